@@ -13,6 +13,7 @@ namespace mrslam::drivers {
 struct SourceCounters {
   std::uint64_t samples = 0;          ///< samples handed out
   std::uint64_t malformed_records = 0;  ///< lines / frames dropped as malformed
+  std::uint64_t out_of_order_stamps = 0;  ///< samples whose stamp is older than the one before
 };
 
 /// A stream of samples in the order they are to be processed (time order for a log: file order).
