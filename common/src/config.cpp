@@ -103,7 +103,9 @@ void Config::fail(const std::string& key, const std::string& what) const {
   failAt(child(key), key, what);
 }
 
-bool Config::has(const std::string& key) const { return static_cast<bool>(child(key)); }
+bool Config::has(const std::string& key) const {
+  return static_cast<bool>(child(key));
+}
 
 double Config::readNumber(const std::string& key, Range range, bool integral) const {
   const YAML::Node node = child(key);
@@ -115,8 +117,9 @@ double Config::readNumber(const std::string& key, Range range, bool integral) co
   try {
     value = node.as<double>();
   } catch (const YAML::Exception&) {
-    failAt(node, key, integral ? "must be an integer, not '" + node.Scalar() + "'"
-                               : "must be a number, not '" + node.Scalar() + "'");
+    failAt(node, key,
+           integral ? "must be an integer, not '" + node.Scalar() + "'"
+                    : "must be a number, not '" + node.Scalar() + "'");
   }
   if (!std::isfinite(value)) {
     failAt(node, key, "must be a finite number");
@@ -246,7 +249,8 @@ std::string Config::getPath(const std::string& key, const std::string& default_v
     return value;
   }
   const std::filesystem::path path(value);
-  return path.is_absolute() ? value : (std::filesystem::path(folder()) / path).lexically_normal().string();
+  return path.is_absolute() ? value
+                            : (std::filesystem::path(folder()) / path).lexically_normal().string();
 }
 
 Config Config::section(const std::string& key) const {
@@ -312,6 +316,24 @@ void findUnknownKey(const YAML::Node& node, const std::string& prefix,
 
 void Config::checkNoUnknownKeys() const {
   findUnknownKey(document_->root, "", document_->keys_read, document_->file_name);
+}
+
+}  // namespace mrslam
+
+namespace mrslam {
+
+bool isValidRobotId(const std::string& robot_id) {
+  if (robot_id.empty() || robot_id.size() > 64) {
+    return false;
+  }
+  for (const char c : robot_id) {
+    const bool allowed = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                         (c >= '0' && c <= '9') || c == '_' || c == '-';
+    if (!allowed) {
+      return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace mrslam

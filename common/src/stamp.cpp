@@ -17,7 +17,8 @@ std::optional<Stamp> Stamp::parseSeconds(std::string_view text) {
     negative = text[i] == '-';
     ++i;
   }
-  constexpr std::int64_t kMaxWholeSeconds = std::numeric_limits<std::int64_t>::max() / 1000000000 - 1;
+  constexpr std::int64_t kMaxWholeSeconds =
+      std::numeric_limits<std::int64_t>::max() / 1000000000 - 1;
   std::int64_t whole = 0;
   std::size_t whole_digits = 0;
   for (; i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i, ++whole_digits) {

@@ -47,7 +47,8 @@ TEST(ConfigTest, WrongTypeNamesFileLineAndKey) {
   EXPECT_EQ(errorOf([&] { config.getDouble("rate", 0.0); }),
             "r.yaml:2: rate: must be a number, not 'fast'");
   const Config ints = Config::loadString("count: 2.5\n", "c.yaml");
-  EXPECT_EQ(errorOf([&] { ints.getInt("count", 0); }), "c.yaml:1: count: must be an integer, not '2.5'");
+  EXPECT_EQ(errorOf([&] { ints.getInt("count", 0); }),
+            "c.yaml:1: count: must be an integer, not '2.5'");
   const Config bools = Config::loadString("on_off: maybe\n", "b.yaml");
   EXPECT_EQ(errorOf([&] { bools.getBool("on_off", false); }),
             "b.yaml:1: on_off: must be true or false");
@@ -57,16 +58,19 @@ TEST(ConfigTest, WrongTypeNamesFileLineAndKey) {
 
 TEST(ConfigTest, OutOfRangeNamesFileLineAndKey) {
   const Config config = Config::loadString("mapping:\n  resolution_m: -0.05\n", "m.yaml");
-  EXPECT_EQ(errorOf([&] { config.section("mapping").getDouble("resolution_m", 0.05, {0.001, 1.0}); }),
+  EXPECT_EQ(errorOf([&] {
+              config.section("mapping").getDouble("resolution_m", 0.05, {0.001, 1.0});
+            }),
             "m.yaml:2: mapping.resolution_m: -0.05 is out of range: must be in [0.001, 1]");
 }
 
 TEST(ConfigTest, ChoiceAndRequiredAndListSize) {
   const Config config = Config::loadString("mode: sideways\nxs: [1, 2]\n", "x.yaml");
-  EXPECT_EQ(errorOf([&] { config.getChoice("mode", "a", {"a", "b"}); }),
+  EXPECT_EQ(errorOf([&] {
+              config.getChoice("mode", "a", {"a", "b"});
+            }),
             "x.yaml:1: mode: 'sideways' is not one of: a, b");
-  EXPECT_EQ(errorOf([&] { config.requireString("robot_id"); }),
-            "x.yaml:1: robot_id: is required");
+  EXPECT_EQ(errorOf([&] { config.requireString("robot_id"); }), "x.yaml:1: robot_id: is required");
   EXPECT_EQ(errorOf([&] { config.getDoubles("xs", {}, 3); }),
             "x.yaml:2: xs: must have exactly 3 numbers");
 }
@@ -78,7 +82,8 @@ TEST(ConfigTest, ListsOfSectionsTrackTheirKeys) {
   ASSERT_EQ(robots.size(), 2u);
   EXPECT_EQ(robots[0].getString("id", ""), "a");
   EXPECT_EQ(robots[1].getString("id", ""), "b");
-  EXPECT_EQ(errorOf([&] { config.checkNoUnknownKeys(); }), "l.yaml:4: robots[1].extra: unknown key");
+  EXPECT_EQ(errorOf([&] { config.checkNoUnknownKeys(); }),
+            "l.yaml:4: robots[1].extra: unknown key");
 }
 
 TEST(ConfigTest, SyntaxErrorAndMissingFile) {
@@ -90,7 +95,8 @@ TEST(ConfigTest, SyntaxErrorAndMissingFile) {
 }
 
 TEST(ConfigTest, RelativePathsAreTakenFromTheConfigFolder) {
-  const Config config = Config::loadString("log: ../data/a.log\nabs: /tmp/x\n", "/etc/mrslam/r.yaml");
+  const Config config =
+      Config::loadString("log: ../data/a.log\nabs: /tmp/x\n", "/etc/mrslam/r.yaml");
   EXPECT_EQ(config.getPath("log", ""), "/etc/data/a.log");
   EXPECT_EQ(config.getPath("abs", ""), "/tmp/x");
 }

@@ -83,3 +83,10 @@ class Config {
 };
 
 }  // namespace mrslam
+
+namespace mrslam {
+
+/// Robot ids name topics' instances and files: 1 to 64 characters of [A-Za-z0-9_-].
+bool isValidRobotId(const std::string& robot_id);
+
+}  // namespace mrslam

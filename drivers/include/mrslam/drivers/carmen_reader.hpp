@@ -1,0 +1,94 @@
+#pragma once
+// Replay of CARMEN logs (plain or gzip), one message per line:
+//   FLASER n r1 .. rn x y theta odom_x odom_y odom_theta timestamp hostname logger_timestamp
+//   ODOM x y theta tv rv accel timestamp hostname logger_timestamp
+// FLASER gives a LaserScan (ranges in metres, first beam at -90°, logged_pose = the laser pose
+// x y theta) and (CarmenSettings::odometry) an OdometryPose from its odom fields just before the
+// scan; ODOM gives an OdometryPose. Samples carry the `timestamp` field, read exactly (exponent
+// form too: csail writes "1.13486e+09"), in file order; stamps that go backwards are counted.
+// PARAM, NEFF, '#' and empty lines are passed over; other message types (RAWLASER1, ROBOTLASER1,
+// SYNC, ...) are skipped and counted in skipped_records().
+//
+// The corrected logs (Radish intel, aces, csail) follow every FLASER with an ODOM line that
+// repeats its pose: odometry re-anchored to the corrected pose, stamped 0 (intel: 69 of them
+// with garbage such as 1.65576e-153). These are counted in reanchor_odom_records() and, by
+// default, not emitted. In those logs the FLASER odom fields equal the laser pose.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mrslam/drivers/line_reader.hpp"
+#include "mrslam/drivers/log_format.hpp"
+#include "mrslam/drivers/sample_source.hpp"
+
+namespace mrslam::drivers {
+
+/// Where the OdometryPose samples of a CARMEN log come from.
+enum class CarmenOdometry {
+  kFlaserOdom,  ///< the odom fields of each FLASER line, stamped as the scan, just before it
+  kOdomLines,   ///< the ODOM lines (the higher-rate stream between scans)
+  kBoth,        ///< both, in file order
+};
+
+struct CarmenSettings {
+  std::string path;                                           ///< the log, plain text or gzip
+  MalformedPolicy malformed_policy = MalformedPolicy::kSkip;  ///< what a malformed line does
+  /// kFlaserOdom: one pose per scan, stamped with it; the ODOM lines of the corrected logs jump
+  /// back in time (intel: 629 of 13631) and are reset to the corrected pose at every scan.
+  CarmenOdometry odometry = CarmenOdometry::kFlaserOdom;
+  bool emit_reanchor_odom = false;  ///< emit the ODOM line that repeats a FLASER's pose too
+  double max_range_m = 50.0;  ///< readings at or above are kNoReturn (sentinels 50, 81.83, 81.91)
+  double range_min_m = 0.01;  ///< readings below are kInvalid (a SICK LMS reports 0 on error)
+};
+
+class CarmenReader final : public SampleSource {
+ public:
+  /// Checks the settings (std::invalid_argument) and opens the log (std::runtime_error).
+  explicit CarmenReader(CarmenSettings settings);
+
+  std::optional<Sample> next() override;
+  std::string describe() const override;
+  SourceCounters counters() const override;
+
+  const CarmenSettings& settings() const { return settings_; }
+  /// Records of message types this reader does not read (RAWLASER1, ROBOTLASER1, ...).
+  std::uint64_t skipped_records() const { return skipped_records_; }
+  /// ODOM lines that repeat the pose of the FLASER before them (emitted or not).
+  std::uint64_t reanchor_odom_records() const { return reanchor_odom_records_; }
+  /// Malformed lines by kind ("field count", "beam count", "not a number", "not finite",
+  /// "negative", "bad stamp", "not a message").
+  std::map<std::string, std::uint64_t> malformedByKind() const { return malformed_.countsByKind(); }
+
+  /// Angle between beams of an n-beam FLASER over 180°: an odd count includes both ends
+  /// (181, 361: pi/(n-1)); an even count lacks the last beam (180, 360: pi/n), as CARMEN has it.
+  /// The 180-beam intel and aces logs fit best so (consecutive scans at their corrected poses).
+  static double beamIncrementRad(std::size_t beam_count);
+
+ private:
+  std::optional<LineProblem> parseLine();
+  std::optional<LineProblem> parseFlaser();
+  std::optional<LineProblem> parseOdom();
+  std::optional<LineProblem> numbers(std::size_t first, std::size_t count, double* out) const;
+
+  const CarmenSettings settings_;
+  LineReader lines_;
+  MalformedLineHandler malformed_;
+  std::string line_;
+  std::vector<std::string_view> fields_;
+  std::vector<double> values_;
+  std::deque<Sample> pending_;
+  std::optional<std::array<double, 3>> flaser_pose_;  ///< x y theta while the last record is FLASER
+  std::optional<Stamp> last_stamp_;
+  SourceCounters counters_;
+  std::uint64_t skipped_records_ = 0;
+  std::uint64_t reanchor_odom_records_ = 0;
+};
+
+}  // namespace mrslam::drivers

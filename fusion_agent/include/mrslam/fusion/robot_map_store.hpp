@@ -1,0 +1,47 @@
+#pragma once
+// The newest local map of every robot, as received (thread-safe: DDS listeners write, the
+// fusion loop reads).
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "mrslam/common/grid_map.hpp"
+#include "mrslam/common/se2.hpp"
+#include "mrslam/common/stamp.hpp"
+
+namespace mrslam::fusion {
+
+struct RobotMap {
+  std::string robot_id;
+  Stamp stamp;
+  std::uint64_t sequence = 0;
+  std::uint64_t scans_inserted = 0;
+  bool is_final = false;
+  GridMap map;
+  std::vector<SE2> trajectory;  ///< robot poses in its own map frame
+};
+
+class RobotMapStore {
+ public:
+  enum class Outcome { kStored, kOutdated };
+
+  /// Keeps `map` unless the store holds a newer one of that robot (higher sequence number).
+  Outcome update(RobotMap map);
+
+  /// A copy of every robot's newest map, ordered by robot id.
+  std::vector<RobotMap> snapshot() const;
+  /// Increases on every stored map.
+  std::uint64_t version() const;
+  bool has(const std::string& robot_id) const;
+  bool isFinal(const std::string& robot_id) const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::string, RobotMap> maps_;
+  std::uint64_t version_ = 0;
+};
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,149 @@
+#include "fusion_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+
+#include "mrslam/dds/convert.hpp"
+#include "mrslam/dds/topics.hpp"
+#include "mrslam_msgsPubSubTypes.h"
+
+namespace mrslam::fusion {
+
+using eprosima::fastdds::dds::DataReader;
+using eprosima::fastdds::dds::SampleInfo;
+using eprosima::fastrtps::types::ReturnCode_t;
+
+namespace {
+
+const char* stateName(msg::RobotState state) {
+  switch (state) {
+    case msg::ROBOT_STARTING:
+      return "starting";
+    case msg::ROBOT_RUNNING:
+      return "running";
+    case msg::ROBOT_FINISHED:
+      return "finished";
+    case msg::ROBOT_FAILED:
+      return "failed";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+FusionNode::FusionNode(const FusionConfig& config, RobotMapStore& store)
+    : config_(config), store_(store), participant_(config.dds, "fusion_agent " + config.fusion_id) {
+  global_map_writer_ = participant_.createWriter<msg::GlobalMapPubSubType>(
+      dds::kGlobalMapTopic, dds::kStateWriterProfile);
+  transforms_writer_ = participant_.createWriter<msg::PairwiseTransformPubSubType>(
+      dds::kTransformsTopic, dds::kStateWriterProfile);
+  status_reader_ = participant_.createReader<msg::RobotStatusPubSubType>(
+      dds::kRobotStatusTopic, dds::kStateReaderProfile, this);
+  map_reader_ = participant_.createReader<msg::LocalMapPubSubType>(dds::kLocalMapTopic,
+                                                                   dds::kMapReaderProfile, this);
+}
+
+FusionNode::~FusionNode() {
+  // Stop callbacks before the members they use go away.
+  map_reader_->set_listener(nullptr);
+  status_reader_->set_listener(nullptr);
+}
+
+void FusionNode::on_subscription_matched(
+    DataReader* reader, const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) {
+  if (reader == map_reader_ && status.current_count_change > 0) {
+    spdlog::info("fusion: a robot's map writer joined ({} matched)", status.current_count);
+  }
+}
+
+void FusionNode::on_data_available(DataReader* reader) {
+  if (reader == map_reader_) {
+    receiveMaps(reader);
+  } else if (reader == status_reader_) {
+    receiveStatus(reader);
+  }
+}
+
+void FusionNode::receiveMaps(DataReader* reader) {
+  msg::LocalMap message;
+  SampleInfo info;
+  while (reader->take_next_sample(&message, &info) == ReturnCode_t::RETCODE_OK) {
+    if (!info.valid_data) {
+      continue;
+    }
+    const std::string& robot_id = message.robot_id();
+    if (!isValidRobotId(robot_id)) {
+      rejected_.report("bad robot id", "a map with an invalid robot id was refused");
+      continue;
+    }
+    if (!config_.allowed_robots.empty() &&
+        std::find(config_.allowed_robots.begin(), config_.allowed_robots.end(), robot_id) ==
+            config_.allowed_robots.end()) {
+      rejected_.report("robot not allowed", "robot '" + robot_id + "' is not in allowed_robots");
+      continue;
+    }
+    Result<GridMap> grid = dds::gridFromMsg(message.info(), message.data(), config_.max_cells);
+    if (!grid) {
+      rejected_.report("bad grid", "map of '" + robot_id + "': " + grid.reason());
+      continue;
+    }
+    RobotMap map;
+    map.robot_id = robot_id;
+    map.stamp = dds::fromMsg(message.stamp());
+    map.sequence = message.sequence_number();
+    map.scans_inserted = message.scans_inserted();
+    map.is_final = message.is_final();
+    map.map = std::move(grid.value());
+    for (const msg::Pose2D& pose : message.trajectory()) {
+      map.trajectory.push_back(dds::fromMsg(pose));
+    }
+    const bool is_final = map.is_final;
+    const std::uint64_t sequence = map.sequence;
+    if (store_.update(std::move(map)) == RobotMapStore::Outcome::kOutdated) {
+      rejected_.report("outdated", "an older map of '" + robot_id + "' arrived late");
+    } else if (is_final) {
+      spdlog::info("fusion: final map {} of {} received", sequence, robot_id);
+    }
+  }
+}
+
+void FusionNode::receiveStatus(DataReader* reader) {
+  msg::RobotStatus message;
+  SampleInfo info;
+  while (reader->take_next_sample(&message, &info) == ReturnCode_t::RETCODE_OK) {
+    if (info.valid_data) {
+      spdlog::debug("fusion: {} is {}: {} ({} scans)", message.robot_id(),
+                    stateName(message.state()), message.message(), message.scans_processed());
+    }
+  }
+}
+
+void FusionNode::publish(const GlobalMapResult& result, std::uint64_t sequence) {
+  msg::GlobalMap message;
+  message.sequence_number(sequence);
+  message.reference_robot(result.reference_robot);
+  dds::gridToMsg(result.map, message.info(), message.data());
+  for (const Placement& placement : result.placements) {
+    msg::RobotPlacement robot;
+    robot.robot_id(placement.robot_id);
+    robot.placed(placement.placed);
+    robot.T_reference_robot(dds::toMsg(placement.T_reference_robot));
+    robot.verification(placement.verification.value_or(0.0));
+    message.robots().push_back(robot);
+
+    msg::PairwiseTransform transform;
+    transform.from_robot(placement.robot_id);
+    transform.to_robot(result.reference_robot);
+    transform.accepted(placement.placed);
+    transform.T_to_from(dds::toMsg(placement.T_reference_robot));
+    transform.verification(placement.verification.value_or(0.0));
+    transform.method(placement.source);
+    transform.reason(placement.placed ? "" : placement.source);
+    transforms_writer_->write(&transform);
+  }
+  global_map_writer_->write(&message);
+}
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,44 @@
+#pragma once
+// The fusion agent's DDS glue: receives every robot's local map (checked before it is stored),
+// publishes the global map and the robots' placements.
+
+#include <string>
+
+#include "mrslam/common/error_counter.hpp"
+#include "mrslam/dds/participant.hpp"
+#include "mrslam/fusion/fusion_config.hpp"
+#include "mrslam/fusion/global_map_builder.hpp"
+#include "mrslam/fusion/robot_map_store.hpp"
+
+namespace mrslam::fusion {
+
+class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
+ public:
+  FusionNode(const FusionConfig& config, RobotMapStore& store);
+  ~FusionNode() override;
+
+  void publish(const GlobalMapResult& result, std::uint64_t sequence);
+
+  /// Maps refused, by reason.
+  const ErrorCounter& rejected() const { return rejected_; }
+
+  void on_data_available(eprosima::fastdds::dds::DataReader* reader) override;
+  void on_subscription_matched(
+      eprosima::fastdds::dds::DataReader* reader,
+      const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) override;
+
+ private:
+  void receiveMaps(eprosima::fastdds::dds::DataReader* reader);
+  void receiveStatus(eprosima::fastdds::dds::DataReader* reader);
+
+  const FusionConfig& config_;
+  RobotMapStore& store_;
+  ErrorCounter rejected_{"fusion: local map refused"};
+  dds::Participant participant_;
+  eprosima::fastdds::dds::DataReader* map_reader_ = nullptr;
+  eprosima::fastdds::dds::DataReader* status_reader_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* global_map_writer_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* transforms_writer_ = nullptr;
+};
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,66 @@
+#include "mrslam/fusion/fusion_config.hpp"
+
+#include <algorithm>
+
+namespace mrslam::fusion {
+
+namespace {
+
+std::vector<std::string> readIdList(const Config& config, const std::string& key) {
+  std::vector<std::string> ids;
+  for (const Config& item : config.sectionList(key)) {
+    const std::string id = item.requireString("id");
+    if (!isValidRobotId(id)) {
+      item.fail("id", "'" + id + "' is not a robot id (1-64 of A-Z a-z 0-9 _ -)");
+    }
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+void readFixedTransforms(const Config& config, FusionConfig& fusion) {
+  for (const Config& robot : config.sectionList("robots")) {
+    const std::string id = robot.requireString("id");
+    if (!isValidRobotId(id)) {
+      robot.fail("id", "'" + id + "' is not a robot id (1-64 of A-Z a-z 0-9 _ -)");
+    }
+    if (fusion.fixed_transforms.count(id) != 0) {
+      robot.fail("id", "robot '" + id + "' is listed twice");
+    }
+    const std::vector<double> pose = robot.getDoubles("T_reference_robot", {0.0, 0.0, 0.0}, 3);
+    fusion.fixed_transforms[id] = SE2(pose[0], pose[1], pose[2]);
+  }
+}
+
+}  // namespace
+
+FusionConfig loadFusionConfig(const std::string& path) {
+  const Config config = Config::loadFile(path);
+  FusionConfig fusion;
+  fusion.fusion_id = config.getString("fusion_id", fusion.fusion_id);
+  fusion.reference_robot = config.getString("reference_robot", "");
+  readFixedTransforms(config, fusion);
+  fusion.expected_robots = readIdList(config, "expected_robots");
+  fusion.exit_when_final = config.getBool("exit_when_final", fusion.exit_when_final);
+  if (fusion.exit_when_final && fusion.expected_robots.empty()) {
+    config.fail("exit_when_final", "needs expected_robots");
+  }
+  fusion.max_runtime_s = config.getDouble("max_runtime_s", fusion.max_runtime_s, {0.0, 1e7});
+  fusion.publish_period_s =
+      config.getDouble("publish_period_s", fusion.publish_period_s, {0.01, 3600.0});
+  fusion.write_period_s = config.getDouble("write_period_s", fusion.write_period_s, {0.0, 1e6});
+  const Config output = config.section("output");
+  fusion.output_folder = output.getPath("folder", fusion.output_folder);
+  fusion.write_robot_maps = output.getBool("write_robot_maps", fusion.write_robot_maps);
+  const Config limits = config.section("limits");
+  fusion.max_cells = static_cast<std::size_t>(
+      limits.getInt("max_cells", static_cast<long long>(fusion.max_cells), {1.0, 1e9}));
+  fusion.allowed_robots = readIdList(limits, "allowed_robots");
+  const Config global_map = config.section("global_map");
+  fusion.composer.resolution_m = global_map.getDouble("resolution_m", 0.0, {0.0, 10.0});
+  fusion.dds = loadDdsSettings(config.section("dds"));
+  config.checkNoUnknownKeys();
+  return fusion;
+}
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,143 @@
+#include "mrslam/fusion/global_map_builder.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "mrslam/common/map_io.hpp"
+
+namespace mrslam::fusion {
+
+namespace {
+
+std::string chooseReference(const std::vector<RobotMap>& maps, const FusionConfig& config) {
+  if (!config.reference_robot.empty()) {
+    return config.reference_robot;
+  }
+  return maps.empty() ? std::string() : maps.front().robot_id;
+}
+
+Placement placeRobot(const std::string& robot_id, const std::string& reference,
+                     const FusionConfig& config) {
+  Placement placement;
+  placement.robot_id = robot_id;
+  if (robot_id == reference) {
+    placement.placed = true;
+    placement.source = "reference";
+    return placement;
+  }
+  const auto fixed = config.fixed_transforms.find(robot_id);
+  if (fixed != config.fixed_transforms.end()) {
+    placement.placed = true;
+    placement.T_reference_robot = fixed->second;
+    placement.source = "config";
+  } else {
+    placement.source = "no transform to " + reference + " yet";
+  }
+  return placement;
+}
+
+// A distinct colour per robot (BGR) for pictures.
+Eigen::Vector3i robotColour(std::size_t index) {
+  static const Eigen::Vector3i kPalette[] = {{0, 0, 230},   {0, 160, 0},   {230, 80, 0},
+                                             {0, 170, 230}, {200, 0, 200}, {120, 120, 0}};
+  return kPalette[index % (sizeof(kPalette) / sizeof(kPalette[0]))];
+}
+
+void writeTransformsJson(const GlobalMapResult& result, const std::string& path) {
+  nlohmann::json robots = nlohmann::json::array();
+  for (const Placement& placement : result.placements) {
+    nlohmann::json robot;
+    robot["id"] = placement.robot_id;
+    robot["placed"] = placement.placed;
+    if (placement.placed) {
+      robot["x"] = placement.T_reference_robot.x();
+      robot["y"] = placement.T_reference_robot.y();
+      robot["theta"] = placement.T_reference_robot.theta();
+    } else {
+      robot["x"] = nullptr;
+      robot["y"] = nullptr;
+      robot["theta"] = nullptr;
+    }
+    robot["verification"] =
+        placement.verification ? nlohmann::json(*placement.verification) : nlohmann::json();
+    robot["source"] = placement.source;
+    robots.push_back(robot);
+  }
+  const nlohmann::json document = {{"reference", result.reference_robot}, {"robots", robots}};
+  std::ofstream file(path);
+  file << document.dump(2) << "\n";
+  if (!file) {
+    throw MapIoError(path + ": cannot write");
+  }
+}
+
+void writeReceivedJson(const std::vector<RobotMap>& maps, const std::string& path) {
+  nlohmann::json robots = nlohmann::json::array();
+  for (const RobotMap& map : maps) {
+    robots.push_back({{"id", map.robot_id},
+                      {"sequence", map.sequence},
+                      {"scans_inserted", map.scans_inserted},
+                      {"final", map.is_final},
+                      {"stamp", map.stamp.toString()},
+                      {"width", map.map.geometry.width},
+                      {"height", map.map.geometry.height},
+                      {"resolution", map.map.geometry.resolution_m}});
+  }
+  std::ofstream file(path);
+  file << nlohmann::json{{"robots", robots}}.dump(2) << "\n";
+  if (!file) {
+    throw MapIoError(path + ": cannot write");
+  }
+}
+
+}  // namespace
+
+GlobalMapResult buildGlobalMap(const std::vector<RobotMap>& maps, const FusionConfig& config) {
+  GlobalMapResult result;
+  result.reference_robot = chooseReference(maps, config);
+  std::vector<PlacedMap> placed_maps;
+  for (const RobotMap& map : maps) {
+    Placement placement = placeRobot(map.robot_id, result.reference_robot, config);
+    if (placement.placed) {
+      placed_maps.push_back({&map.map, placement.T_reference_robot});
+    }
+    result.placements.push_back(std::move(placement));
+  }
+  result.map = composeGlobalMap(placed_maps, config.composer);
+  return result;
+}
+
+void writeFusionOutputs(const GlobalMapResult& result, const std::vector<RobotMap>& maps,
+                        const std::string& folder, bool write_robot_maps) {
+  const std::filesystem::path out(folder);
+  std::filesystem::create_directories(out);
+  writeTransformsJson(result, (out / "transforms.json").string());
+  if (result.map.geometry.cellCount() > 0) {
+    std::vector<MapOverlay> overlays;
+    for (std::size_t i = 0; i < result.placements.size() && i < maps.size(); ++i) {
+      const Placement& placement = result.placements[i];
+      if (!placement.placed) {
+        continue;
+      }
+      MapOverlay overlay;
+      overlay.bgr = robotColour(i);
+      for (const SE2& pose : maps[i].trajectory) {
+        overlay.trajectory_m.push_back(placement.T_reference_robot * pose.translation());
+      }
+      overlays.push_back(std::move(overlay));
+    }
+    saveMapYaml(result.map, (out / "global_map.yaml").string());
+    saveMapPng(result.map, (out / "global_map.png").string(), overlays);
+    saveMapOctomap(result.map, (out / "global_map.bt").string());
+  }
+  writeReceivedJson(maps, (out / "robots.json").string());
+  if (write_robot_maps) {
+    std::filesystem::create_directories(out / "robots");
+    for (const RobotMap& map : maps) {
+      saveMapYaml(map.map, (out / "robots" / (map.robot_id + ".yaml")).string());
+    }
+  }
+}
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,105 @@
+#include "mrslam/fusion/map_composer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mrslam::fusion {
+
+void placedBounds(const std::vector<PlacedMap>& maps, Eigen::Vector2d& min_m,
+                  Eigen::Vector2d& max_m) {
+  min_m = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  max_m = -min_m;
+  for (const PlacedMap& placed : maps) {
+    const GridGeometry& g = placed.map->geometry;
+    const Eigen::Vector2d size(g.width * g.resolution_m, g.height * g.resolution_m);
+    for (const Eigen::Vector2d& corner :
+         {g.origin_m, Eigen::Vector2d(g.origin_m + Eigen::Vector2d(size.x(), 0.0)),
+          Eigen::Vector2d(g.origin_m + Eigen::Vector2d(0.0, size.y())),
+          Eigen::Vector2d(g.origin_m + size)}) {
+      const Eigen::Vector2d p = placed.T_reference_robot * corner;
+      min_m = min_m.cwiseMin(p);
+      max_m = max_m.cwiseMax(p);
+    }
+  }
+}
+
+namespace {
+
+// The global grid's geometry: the placed maps' bounds, origin on the resolution lattice.
+GridGeometry globalGeometry(const std::vector<PlacedMap>& maps, double resolution) {
+  Eigen::Vector2d min_m;
+  Eigen::Vector2d max_m;
+  placedBounds(maps, min_m, max_m);
+  GridGeometry geometry;
+  geometry.resolution_m = resolution;
+  const double min_cx = std::floor(min_m.x() / resolution + 1e-9);
+  const double min_cy = std::floor(min_m.y() / resolution + 1e-9);
+  geometry.origin_m = Eigen::Vector2d(min_cx * resolution, min_cy * resolution);
+  geometry.width = static_cast<int>(std::ceil(max_m.x() / resolution - 1e-9) - min_cx);
+  geometry.height = static_cast<int>(std::ceil(max_m.y() / resolution - 1e-9) - min_cy);
+  return geometry;
+}
+
+// Log-odds of an occupancy value, with 0 and 100 taken as 0.4 % and 99.6 %: finite, and they
+// round back to 0 and 100.
+float valueLogOdds(std::int8_t value) {
+  const double p = std::clamp(value / 100.0, 0.004, 0.996);
+  return static_cast<float>(std::log(p / (1.0 - p)));
+}
+
+// Adds the evidence of one placed map to the global log-odds sums.
+void accumulate(const PlacedMap& placed, const GridGeometry& global, std::vector<float>& sum,
+                std::vector<std::uint8_t>& known) {
+  const GridMap& map = *placed.map;
+  const GridGeometry& local = map.geometry;
+  const SE2 T_robot_reference = placed.T_reference_robot.inverse();
+  const Eigen::Matrix2d rotation = T_robot_reference.rotation() / local.resolution_m;
+  const Eigen::Vector2d offset =
+      (T_robot_reference.translation() - local.origin_m) / local.resolution_m;
+  for (int gy = 0; gy < global.height; ++gy) {
+    for (int gx = 0; gx < global.width; ++gx) {
+      // Continuous cell coordinates of the global cell centre in the robot map.
+      const Eigen::Vector2d q = rotation * global.cellCenter(gx, gy) + offset;
+      const int cx = static_cast<int>(std::floor(q.x()));
+      const int cy = static_cast<int>(std::floor(q.y()));
+      if (!local.contains(cx, cy)) {
+        continue;
+      }
+      const std::int8_t value = map.at(cx, cy);
+      if (value == GridMap::kUnknown) {
+        continue;
+      }
+      const std::size_t index = global.index(gx, gy);
+      sum[index] += valueLogOdds(value);
+      known[index] = 1;
+    }
+  }
+}
+
+}  // namespace
+
+GridMap composeGlobalMap(const std::vector<PlacedMap>& maps, const ComposerSettings& settings) {
+  if (maps.empty()) {
+    return GridMap();
+  }
+  const double resolution =
+      settings.resolution_m > 0.0 ? settings.resolution_m : maps.front().map->geometry.resolution_m;
+  const GridGeometry geometry = globalGeometry(maps, resolution);
+  std::vector<float> sum(geometry.cellCount(), 0.0f);
+  std::vector<std::uint8_t> known(geometry.cellCount(), 0);
+  for (const PlacedMap& placed : maps) {
+    accumulate(placed, geometry, sum, known);
+  }
+  GridMap global(geometry, GridMap::kUnknown);
+  for (std::size_t i = 0; i < sum.size(); ++i) {
+    if (known[i] != 0) {
+      const float clamped =
+          std::clamp(sum[i], -settings.max_abs_log_odds, settings.max_abs_log_odds);
+      global.cells[i] = static_cast<std::int8_t>(std::lround(100.0 * logOddsToProbability(clamped)));
+    }
+  }
+  return global;
+}
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,43 @@
+#include "mrslam/fusion/robot_map_store.hpp"
+
+namespace mrslam::fusion {
+
+RobotMapStore::Outcome RobotMapStore::update(RobotMap map) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto found = maps_.find(map.robot_id);
+  if (found != maps_.end() && found->second.sequence >= map.sequence) {
+    return Outcome::kOutdated;
+  }
+  const std::string robot_id = map.robot_id;
+  maps_[robot_id] = std::move(map);
+  ++version_;
+  return Outcome::kStored;
+}
+
+std::vector<RobotMap> RobotMapStore::snapshot() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<RobotMap> maps;
+  maps.reserve(maps_.size());
+  for (const auto& entry : maps_) {
+    maps.push_back(entry.second);
+  }
+  return maps;
+}
+
+std::uint64_t RobotMapStore::version() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return version_;
+}
+
+bool RobotMapStore::has(const std::string& robot_id) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return maps_.count(robot_id) != 0;
+}
+
+bool RobotMapStore::isFinal(const std::string& robot_id) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto found = maps_.find(robot_id);
+  return found != maps_.end() && found->second.is_final;
+}
+
+}  // namespace mrslam::fusion

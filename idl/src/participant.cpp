@@ -1,0 +1,124 @@
+#include "mrslam/dds/participant.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/qos/PublisherQos.hpp>
+#include <fastdds/dds/subscriber/qos/SubscriberQos.hpp>
+#include <fastdds/dds/topic/qos/TopicQos.hpp>
+#include <filesystem>
+#include <mutex>
+#include <set>
+#include <thread>
+
+namespace mrslam::dds {
+
+using eprosima::fastdds::dds::DomainParticipantFactory;
+using eprosima::fastrtps::types::ReturnCode_t;
+
+namespace {
+
+// Fast DDS keeps loaded profiles for the whole process: load each file once.
+void loadProfilesOnce(const std::string& path) {
+  static std::mutex mutex;
+  static std::set<std::string> loaded;
+  std::lock_guard<std::mutex> lock(mutex);
+  const std::string key = std::filesystem::weakly_canonical(path).string();
+  if (loaded.count(key) != 0) {
+    return;
+  }
+  if (!std::filesystem::exists(path)) {
+    throw DdsError(path + ": DDS profiles file not found");
+  }
+  if (DomainParticipantFactory::get_instance()->load_XML_profiles_file(path) !=
+      ReturnCode_t::RETCODE_OK) {
+    throw DdsError(path + ": Fast DDS could not load the XML profiles");
+  }
+  loaded.insert(key);
+}
+
+}  // namespace
+
+Participant::Participant(const DdsSettings& settings, const std::string& name)
+    : domain_id_(settings.domain_id) {
+  loadProfilesOnce(settings.profiles_file);
+  auto* factory = DomainParticipantFactory::get_instance();
+  participant_ = factory->create_participant_with_profile(settings.domain_id,
+                                                          settings.participant_profile);
+  if (participant_ == nullptr) {
+    throw DdsError("cannot create DDS participant '" + name + "' on domain " +
+                   std::to_string(settings.domain_id) + " with profile '" +
+                   settings.participant_profile + "' of " + settings.profiles_file);
+  }
+  publisher_ = participant_->create_publisher(eprosima::fastdds::dds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(eprosima::fastdds::dds::SUBSCRIBER_QOS_DEFAULT);
+  if (publisher_ == nullptr || subscriber_ == nullptr) {
+    throw DdsError("cannot create the DDS publisher/subscriber of '" + name + "'");
+  }
+}
+
+Participant::~Participant() {
+  if (participant_ != nullptr) {
+    participant_->delete_contained_entities();
+    DomainParticipantFactory::get_instance()->delete_participant(participant_);
+  }
+}
+
+eprosima::fastdds::dds::Topic* Participant::topic(const std::string& name,
+                                                  eprosima::fastdds::dds::TypeSupport type) {
+  const auto found = topics_.find(name);
+  if (found != topics_.end()) {
+    return found->second;
+  }
+  if (type.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
+    throw DdsError("cannot register DDS type " + type.get_type_name());
+  }
+  auto* created = participant_->create_topic(name, type.get_type_name(),
+                                             eprosima::fastdds::dds::TOPIC_QOS_DEFAULT);
+  if (created == nullptr) {
+    throw DdsError("cannot create DDS topic " + name);
+  }
+  topics_[name] = created;
+  return created;
+}
+
+eprosima::fastdds::dds::DataWriter* Participant::createWriter(
+    const std::string& topic_name, eprosima::fastdds::dds::TypeSupport type,
+    const std::string& profile) {
+  auto* writer = publisher_->create_datawriter_with_profile(topic(topic_name, type), profile);
+  if (writer == nullptr) {
+    throw DdsError("cannot create a DDS writer on " + topic_name + " with profile " + profile);
+  }
+  return writer;
+}
+
+eprosima::fastdds::dds::DataReader* Participant::createReader(
+    const std::string& topic_name, eprosima::fastdds::dds::TypeSupport type,
+    const std::string& profile, eprosima::fastdds::dds::DataReaderListener* listener) {
+  auto* reader =
+      subscriber_->create_datareader_with_profile(topic(topic_name, type), profile, listener);
+  if (reader == nullptr) {
+    throw DdsError("cannot create a DDS reader on " + topic_name + " with profile " + profile);
+  }
+  return reader;
+}
+
+bool waitForReaders(eprosima::fastdds::dds::DataWriter* writer, int count, double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(timeout_s));
+  while (true) {
+    eprosima::fastdds::dds::PublicationMatchedStatus status;
+    writer->get_publication_matched_status(status);
+    if (status.current_count >= count) {
+      return true;
+    }
+    if (std::chrono::steady_clock::now() >= deadline) {
+      return false;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+}  // namespace mrslam::dds

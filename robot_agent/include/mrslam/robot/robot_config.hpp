@@ -1,0 +1,49 @@
+#pragma once
+// The robot agent's configuration (config/<robot>.yaml), validated on load, and the sample
+// source it names.
+
+#include <memory>
+#include <string>
+
+#include "mrslam/common/dds_settings.hpp"
+#include "mrslam/common/platform.hpp"
+#include "mrslam/drivers/sample_source.hpp"
+#include "mrslam/drivers/simulator.hpp"
+#include "mrslam/robot/grid_mapper.hpp"
+#include "mrslam/robot/odometry_estimator.hpp"
+#include "mrslam/robot/robot_runner.hpp"
+
+namespace mrslam::robot {
+
+enum class SourceType { kSimulator, kLog, kBreezySlam, kCarmen };
+
+struct SourceSettings {
+  SourceType type = SourceType::kSimulator;  ///< where the samples come from
+  std::string path;  ///< the log (log, breezyslam, carmen), relative to the config file
+  drivers::MalformedPolicy malformed = drivers::MalformedPolicy::kSkip;  ///< malformed lines
+};
+
+struct RobotConfig {
+  std::string robot_id;  ///< the robot's name on DDS and in files
+  SourceSettings source;
+  drivers::SimulatorSettings simulator;
+  DiffDriveParams platform;
+  SensorMounting mounting;
+  OdometryNoise odometry_noise;
+  MappingSettings mapping;
+  RunnerSettings runner;
+  DdsSettings dds;
+  int delivery_readers = 1;          ///< map readers (fusion agents) to wait for at the end
+  double delivery_timeout_s = 30.0;  ///< how long to wait for them to take the final map
+};
+
+/// Loads and validates a robot config; throws ConfigError (`file:line: key: what is wrong`).
+RobotConfig loadRobotConfig(const std::string& path);
+
+/// Opens the configured source. Throws std::runtime_error when it cannot be opened.
+std::unique_ptr<drivers::SampleSource> openSource(const RobotConfig& config);
+
+/// The pipeline the config describes, with wheel odometry as its estimator.
+std::unique_ptr<RobotPipeline> makePipeline(const RobotConfig& config);
+
+}  // namespace mrslam::robot

@@ -1,0 +1,57 @@
+#pragma once
+// The robot's whole estimation and mapping pipeline, free of DDS, devices and files:
+// samples in (in processing order), pose and map out.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "mrslam/robot/grid_mapper.hpp"
+#include "mrslam/robot/pose_estimator.hpp"
+
+namespace mrslam::robot {
+
+/// The estimated pose at one inserted scan.
+struct TrajectoryPoint {
+  Stamp stamp;
+  SE2 T_map_robot;
+};
+
+struct PipelineCounters {
+  std::uint64_t scans = 0;
+  std::uint64_t wheel_ticks = 0;
+  std::uint64_t odometry = 0;
+  std::uint64_t imu = 0;
+  std::uint64_t late_samples = 0;  ///< samples older than one already processed
+};
+
+class RobotPipeline {
+ public:
+  /// What a sample changed.
+  enum class Update { kPose, kScan };
+
+  RobotPipeline(const MappingSettings& mapping, const SensorMounting& mounting,
+                std::unique_ptr<PoseEstimator> estimator);
+
+  Update process(const Sample& sample);
+
+  SE2 pose() const { return estimator_->pose(); }
+  Eigen::Matrix3d covariance() const { return estimator_->covariance(); }
+  const OccupancyGrid& grid() const { return mapper_.grid(); }
+  const std::vector<TrajectoryPoint>& trajectory() const { return trajectory_; }
+  const PipelineCounters& counters() const { return counters_; }
+  /// Stamp of the newest sample processed (zero before the first).
+  Stamp latestStamp() const { return latest_stamp_; }
+
+ private:
+  Update processScan(const LaserScan& scan);
+
+  std::unique_ptr<PoseEstimator> estimator_;
+  GridMapper mapper_;
+  std::vector<TrajectoryPoint> trajectory_;
+  PipelineCounters counters_;
+  Stamp latest_stamp_;
+  bool has_stamp_ = false;
+};
+
+}  // namespace mrslam::robot

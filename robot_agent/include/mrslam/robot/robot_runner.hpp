@@ -1,0 +1,92 @@
+#pragma once
+// Drives a RobotPipeline from a SampleSource: paces replay (as fast as possible or at a speed
+// factor of the log's clock), and hands poses, maps and status to an output (the DDS node).
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mrslam/drivers/sample_source.hpp"
+#include "mrslam/robot/robot_pipeline.hpp"
+
+namespace mrslam::robot {
+
+/// A published local map with what goes with it.
+struct MapSnapshot {
+  Stamp stamp;
+  std::uint64_t sequence = 0;
+  std::uint64_t scans_inserted = 0;
+  bool is_final = false;
+  GridMap map;
+  std::vector<SE2> trajectory;  ///< map-frame poses at scans (decimated)
+};
+
+enum class RobotState { kStarting, kRunning, kFinished, kFailed };
+
+struct StatusReport {
+  Stamp stamp;
+  RobotState state = RobotState::kStarting;
+  std::string message;
+  std::string source;  ///< SampleSource::describe()
+  drivers::SourceCounters source_counters;
+  PipelineCounters pipeline_counters;
+  std::uint64_t maps_published = 0;
+};
+
+/// Where the runner sends its results.
+class RobotOutput {
+ public:
+  virtual ~RobotOutput() = default;
+  virtual void publishPose(Stamp stamp, const SE2& T_map_robot, const Eigen::Matrix3d& covariance) = 0;
+  virtual void publishMap(const MapSnapshot& snapshot) = 0;
+  virtual void publishStatus(const StatusReport& report) = 0;
+};
+
+struct RunnerSettings {
+  double speed = 0.0;             ///< replay speed factor of the sample clock; 0: as fast as possible
+  double map_period_s = 1.0;      ///< sample-clock time between published maps
+  double status_period_s = 1.0;   ///< sample-clock time between status reports
+  std::size_t trajectory_points = 2000;  ///< most trajectory poses sent with a map
+};
+
+struct RunSummary {
+  std::uint64_t samples = 0;
+  std::uint64_t maps_published = 0;
+  bool stopped_early = false;  ///< the stop flag ended the run before the source did
+};
+
+class RobotRunner {
+ public:
+  RobotRunner(const RunnerSettings& settings, drivers::SampleSource& source,
+              RobotPipeline& pipeline, RobotOutput& output);
+
+  /// Runs until the source ends or `stop` becomes true; the last map is published final.
+  RunSummary run(const std::atomic<bool>& stop);
+
+  /// The map as it would be published now.
+  MapSnapshot snapshot(bool is_final) const;
+
+ private:
+  void pace(Stamp stamp);
+  void publishMap(bool is_final);
+  void publishStatus(RobotState state, const std::string& message);
+
+  RunnerSettings settings_;
+  drivers::SampleSource& source_;
+  RobotPipeline& pipeline_;
+  RobotOutput& output_;
+  std::uint64_t maps_published_ = 0;
+  Stamp last_map_stamp_;
+  Stamp last_status_stamp_;
+  bool clock_started_ = false;
+  Stamp first_stamp_;
+  std::chrono::steady_clock::time_point wall_start_;
+};
+
+/// Keeps at most `max_points` poses, evenly spread, always with the last.
+std::vector<SE2> decimateTrajectory(const std::vector<TrajectoryPoint>& trajectory,
+                                    std::size_t max_points);
+
+}  // namespace mrslam::robot

@@ -1,0 +1,108 @@
+#include "robot_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+#include "mrslam/dds/convert.hpp"
+#include "mrslam/dds/topics.hpp"
+#include "mrslam_msgsPubSubTypes.h"
+
+namespace mrslam::robot {
+
+using eprosima::fastrtps::types::ReturnCode_t;
+
+namespace {
+
+msg::RobotState toMsgState(RobotState state) {
+  switch (state) {
+    case RobotState::kStarting:
+      return msg::ROBOT_STARTING;
+    case RobotState::kRunning:
+      return msg::ROBOT_RUNNING;
+    case RobotState::kFinished:
+      return msg::ROBOT_FINISHED;
+    case RobotState::kFailed:
+      return msg::ROBOT_FAILED;
+  }
+  return msg::ROBOT_FAILED;
+}
+
+}  // namespace
+
+RobotNode::RobotNode(const DdsSettings& settings, const std::string& robot_id)
+    : robot_id_(robot_id),
+      participant_(settings, "robot_agent " + robot_id),
+      pose_writer_(participant_.createWriter<msg::RobotPosePubSubType>(dds::kRobotPoseTopic,
+                                                                       dds::kPoseWriterProfile)),
+      map_writer_(participant_.createWriter<msg::LocalMapPubSubType>(dds::kLocalMapTopic,
+                                                                     dds::kMapWriterProfile)),
+      status_writer_(participant_.createWriter<msg::RobotStatusPubSubType>(
+          dds::kRobotStatusTopic, dds::kStateWriterProfile)) {
+  map_message_.robot_id(robot_id_);
+}
+
+void RobotNode::publishPose(Stamp stamp, const SE2& T_map_robot,
+                            const Eigen::Matrix3d& covariance) {
+  msg::RobotPose message;
+  message.robot_id(robot_id_);
+  message.stamp(dds::toMsg(stamp));
+  message.sequence_number(++pose_sequence_);
+  message.pose(dds::toMsg(T_map_robot));
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      message.covariance()[static_cast<std::size_t>(row * 3 + col)] = covariance(row, col);
+    }
+  }
+  pose_writer_->write(&message);
+}
+
+void RobotNode::publishMap(const MapSnapshot& snapshot) {
+  map_message_.stamp(dds::toMsg(snapshot.stamp));
+  map_message_.sequence_number(snapshot.sequence);
+  map_message_.scans_inserted(static_cast<std::uint32_t>(snapshot.scans_inserted));
+  map_message_.is_final(snapshot.is_final);
+  dds::gridToMsg(snapshot.map, map_message_.info(), map_message_.data());
+  map_message_.trajectory().clear();
+  for (const SE2& pose : snapshot.trajectory) {
+    map_message_.trajectory().push_back(dds::toMsg(pose));
+  }
+  if (!map_writer_->write(&map_message_)) {
+    spdlog::error("{}: the local map {} could not be written to DDS", robot_id_,
+                  snapshot.sequence);
+  }
+}
+
+void RobotNode::publishStatus(const StatusReport& report) {
+  msg::RobotStatus message;
+  message.robot_id(robot_id_);
+  message.stamp(dds::toMsg(report.stamp));
+  message.state(toMsgState(report.state));
+  message.message(report.message);
+  msg::SensorHealth source;
+  source.name("samples");
+  source.source(report.source);
+  source.healthy(report.state != RobotState::kFailed);
+  source.samples(report.source_counters.samples);
+  source.errors(report.source_counters.malformed_records);
+  message.sensors().push_back(source);
+  message.scans_processed(report.pipeline_counters.scans);
+  message.malformed_records(report.source_counters.malformed_records);
+  message.maps_published(report.maps_published);
+  status_writer_->write(&message);
+}
+
+bool RobotNode::waitForMapDelivery(int readers, double timeout_s) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!dds::waitForReaders(map_writer_, readers, timeout_s)) {
+    return false;
+  }
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double left_s = std::max(0.0, timeout_s - elapsed_s);
+  const auto seconds = static_cast<std::int32_t>(left_s);
+  const auto nanoseconds = static_cast<std::uint32_t>((left_s - seconds) * 1e9);
+  return map_writer_->wait_for_acknowledgments({seconds, nanoseconds}) == ReturnCode_t::RETCODE_OK;
+}
+
+}  // namespace mrslam::robot

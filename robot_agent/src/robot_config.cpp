@@ -1,0 +1,133 @@
+#include "mrslam/robot/robot_config.hpp"
+
+#include "mrslam/drivers/breezyslam_reader.hpp"
+#include "mrslam/drivers/carmen_reader.hpp"
+#include "mrslam/drivers/log_format.hpp"
+
+namespace mrslam::robot {
+
+namespace {
+
+SourceSettings loadSource(const Config& section) {
+  SourceSettings source;
+  const std::string type =
+      section.getChoice("type", "simulator", {"simulator", "log", "breezyslam", "carmen"});
+  source.type = type == "simulator" ? SourceType::kSimulator
+                : type == "log"     ? SourceType::kLog
+                : type == "breezyslam" ? SourceType::kBreezySlam
+                                       : SourceType::kCarmen;
+  source.path = section.getPath("path", "");
+  if (source.type != SourceType::kSimulator && source.path.empty()) {
+    section.fail("path", "a log source needs the path of its log");
+  }
+  source.malformed = section.getChoice("malformed", "skip", {"skip", "stop"}) == "stop"
+                         ? drivers::MalformedPolicy::kStop
+                         : drivers::MalformedPolicy::kSkip;
+  return source;
+}
+
+DiffDriveParams loadPlatform(const Config& section) {
+  DiffDriveParams platform;
+  platform.wheel_radius_m = section.getDouble("wheel_radius_m", platform.wheel_radius_m, {1e-3, 2.0});
+  platform.track_width_m = section.getDouble("track_width_m", platform.track_width_m, {1e-2, 5.0});
+  platform.ticks_per_revolution =
+      section.getDouble("ticks_per_revolution", platform.ticks_per_revolution, {1.0, 1e7});
+  return platform;
+}
+
+SensorMounting loadMounting(const Config& laser, const Config& imu) {
+  SensorMounting mounting;
+  mounting.T_robot_laser = SE2(laser.getDouble("x_m", 0.0, {-5.0, 5.0}),
+                               laser.getDouble("y_m", 0.0, {-5.0, 5.0}),
+                               laser.getDouble("yaw_rad", 0.0, {-M_PI, M_PI}));
+  mounting.imu_yaw_offset_rad = imu.getDouble("yaw_offset_rad", 0.0, {-M_PI, M_PI});
+  return mounting;
+}
+
+OdometryNoise loadOdometryNoise(const Config& section) {
+  OdometryNoise noise;
+  noise.translation_per_m = section.getDouble("translation_per_m", noise.translation_per_m, {0.0, 10.0});
+  noise.rotation_per_rad = section.getDouble("rotation_per_rad", noise.rotation_per_rad, {0.0, 10.0});
+  noise.rotation_per_m = section.getDouble("rotation_per_m", noise.rotation_per_m, {0.0, 10.0});
+  return noise;
+}
+
+MappingSettings loadMapping(const Config& section) {
+  MappingSettings mapping;
+  mapping.resolution_m = section.getDouble("resolution_m", mapping.resolution_m, {0.005, 5.0});
+  mapping.max_range_m = section.getDouble("max_range_m", mapping.max_range_m, {0.0, 200.0});
+  mapping.clearing_range_m =
+      section.getDouble("clearing_range_m", mapping.clearing_range_m, {0.0, 200.0});
+  const Config log_odds = section.section("log_odds");
+  LogOddsParams& params = mapping.log_odds;
+  params.hit = static_cast<float>(log_odds.getDouble("hit", params.hit, {0.01, 10.0}));
+  params.miss = static_cast<float>(log_odds.getDouble("miss", params.miss, {-10.0, -0.01}));
+  params.clamp_min = static_cast<float>(log_odds.getDouble("clamp_min", params.clamp_min, {-50.0, -0.1}));
+  params.clamp_max = static_cast<float>(log_odds.getDouble("clamp_max", params.clamp_max, {0.1, 50.0}));
+  return mapping;
+}
+
+void loadPublish(const Config& section, RobotConfig& config) {
+  RunnerSettings& runner = config.runner;
+  runner.speed = section.getDouble("speed", runner.speed, {0.0, 1000.0});
+  runner.map_period_s = section.getDouble("map_period_s", runner.map_period_s, {0.0, 3600.0});
+  runner.status_period_s = section.getDouble("status_period_s", runner.status_period_s, {0.0, 3600.0});
+  runner.trajectory_points = static_cast<std::size_t>(
+      section.getInt("trajectory_points", static_cast<long long>(runner.trajectory_points), {0, 1e6}));
+  config.delivery_readers = static_cast<int>(section.getInt("delivery_readers", config.delivery_readers, {0, 64}));
+  config.delivery_timeout_s =
+      section.getDouble("delivery_timeout_s", config.delivery_timeout_s, {0.0, 3600.0});
+}
+
+}  // namespace
+
+RobotConfig loadRobotConfig(const std::string& path) {
+  const Config config = Config::loadFile(path);
+  RobotConfig robot;
+  robot.robot_id = config.requireString("robot_id");
+  if (!isValidRobotId(robot.robot_id)) {
+    config.fail("robot_id", "'" + robot.robot_id + "' is not a robot id (1-64 of A-Z a-z 0-9 _ -)");
+  }
+  robot.source = loadSource(config.section("source"));
+  robot.simulator = drivers::loadSimulatorSettings(config.section("simulator"));
+  robot.platform = loadPlatform(config.section("platform"));
+  robot.mounting = loadMounting(config.section("laser"), config.section("imu"));
+  robot.odometry_noise = loadOdometryNoise(config.section("odometry_noise"));
+  robot.mapping = loadMapping(config.section("mapping"));
+  loadPublish(config.section("publish"), robot);
+  robot.dds = loadDdsSettings(config.section("dds"));
+  config.checkNoUnknownKeys();
+  return robot;
+}
+
+std::unique_ptr<drivers::SampleSource> openSource(const RobotConfig& config) {
+  const SourceSettings& source = config.source;
+  switch (source.type) {
+    case SourceType::kSimulator:
+      return std::make_unique<drivers::Simulator>(config.simulator, config.platform,
+                                                  config.mounting);
+    case SourceType::kLog:
+      return drivers::openLogReader(source.path, source.malformed);
+    case SourceType::kBreezySlam: {
+      drivers::BreezySlamSettings settings;
+      settings.path = source.path;
+      settings.malformed_policy = source.malformed;
+      return std::make_unique<drivers::BreezySlamReader>(settings);
+    }
+    case SourceType::kCarmen: {
+      drivers::CarmenSettings settings;
+      settings.path = source.path;
+      settings.malformed_policy = source.malformed;
+      return std::make_unique<drivers::CarmenReader>(settings);
+    }
+  }
+  throw std::logic_error("unknown source type");
+}
+
+std::unique_ptr<RobotPipeline> makePipeline(const RobotConfig& config) {
+  return std::make_unique<RobotPipeline>(
+      config.mapping, config.mounting,
+      std::make_unique<OdometryEstimator>(config.platform, config.odometry_noise));
+}
+
+}  // namespace mrslam::robot

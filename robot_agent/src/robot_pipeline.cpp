@@ -1,0 +1,41 @@
+#include "mrslam/robot/robot_pipeline.hpp"
+
+namespace mrslam::robot {
+
+RobotPipeline::RobotPipeline(const MappingSettings& mapping, const SensorMounting& mounting,
+                             std::unique_ptr<PoseEstimator> estimator)
+    : estimator_(std::move(estimator)), mapper_(mapping, mounting) {}
+
+RobotPipeline::Update RobotPipeline::process(const Sample& sample) {
+  const Stamp stamp = stampOf(sample);
+  if (has_stamp_ && stamp < latest_stamp_) {
+    ++counters_.late_samples;
+  } else {
+    latest_stamp_ = stamp;
+    has_stamp_ = true;
+  }
+  if (const auto* scan = std::get_if<LaserScan>(&sample)) {
+    return processScan(*scan);
+  }
+  if (const auto* ticks = std::get_if<WheelTicks>(&sample)) {
+    ++counters_.wheel_ticks;
+    estimator_->addWheelTicks(*ticks);
+  } else if (const auto* odometry = std::get_if<OdometryPose>(&sample)) {
+    ++counters_.odometry;
+    estimator_->addOdometry(*odometry);
+  } else if (const auto* imu = std::get_if<ImuSample>(&sample)) {
+    ++counters_.imu;
+    estimator_->addImu(*imu);
+  }
+  return Update::kPose;
+}
+
+RobotPipeline::Update RobotPipeline::processScan(const LaserScan& scan) {
+  ++counters_.scans;
+  estimator_->addScan(scan, mapper_.grid());
+  mapper_.insertScan(scan, estimator_->pose());
+  trajectory_.push_back({scan.stamp, estimator_->pose()});
+  return Update::kScan;
+}
+
+}  // namespace mrslam::robot

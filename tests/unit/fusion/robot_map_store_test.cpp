@@ -1,0 +1,34 @@
+#include "mrslam/fusion/robot_map_store.hpp"
+
+#include <gtest/gtest.h>
+
+namespace mrslam::fusion {
+namespace {
+
+RobotMap mapOf(const std::string& id, std::uint64_t sequence, bool is_final = false) {
+  RobotMap map;
+  map.robot_id = id;
+  map.sequence = sequence;
+  map.is_final = is_final;
+  return map;
+}
+
+TEST(RobotMapStoreTest, KeepsTheNewestMapOfEachRobot) {
+  RobotMapStore store;
+  EXPECT_EQ(store.update(mapOf("b", 1)), RobotMapStore::Outcome::kStored);
+  EXPECT_EQ(store.update(mapOf("a", 3)), RobotMapStore::Outcome::kStored);
+  EXPECT_EQ(store.update(mapOf("a", 2)), RobotMapStore::Outcome::kOutdated);
+  EXPECT_EQ(store.update(mapOf("a", 3)), RobotMapStore::Outcome::kOutdated);
+  EXPECT_EQ(store.version(), 2u);
+  EXPECT_EQ(store.update(mapOf("a", 4, true)), RobotMapStore::Outcome::kStored);
+  const auto maps = store.snapshot();
+  ASSERT_EQ(maps.size(), 2u);
+  EXPECT_EQ(maps[0].robot_id, "a");
+  EXPECT_EQ(maps[0].sequence, 4u);
+  EXPECT_TRUE(store.isFinal("a"));
+  EXPECT_FALSE(store.isFinal("b"));
+  EXPECT_FALSE(store.has("c"));
+}
+
+}  // namespace
+}  // namespace mrslam::fusion

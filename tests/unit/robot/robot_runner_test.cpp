@@ -1,0 +1,128 @@
+#include "mrslam/robot/robot_runner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <deque>
+
+#include "mrslam/robot/odometry_estimator.hpp"
+
+namespace mrslam::robot {
+namespace {
+
+// A source handing out prepared samples.
+class VectorSource : public drivers::SampleSource {
+ public:
+  explicit VectorSource(std::deque<Sample> samples) : samples_(std::move(samples)) {}
+  std::optional<Sample> next() override {
+    if (samples_.empty()) {
+      return std::nullopt;
+    }
+    Sample sample = samples_.front();
+    samples_.pop_front();
+    ++counters_.samples;
+    return sample;
+  }
+  std::string describe() const override { return "test samples"; }
+  drivers::SourceCounters counters() const override { return counters_; }
+
+ private:
+  std::deque<Sample> samples_;
+  drivers::SourceCounters counters_;
+};
+
+// Records what the runner publishes.
+class RecordingOutput : public RobotOutput {
+ public:
+  void publishPose(Stamp stamp, const SE2&, const Eigen::Matrix3d&) override {
+    pose_stamps.push_back(stamp);
+  }
+  void publishMap(const MapSnapshot& snapshot) override { maps.push_back(snapshot); }
+  void publishStatus(const StatusReport& report) override { states.push_back(report.state); }
+
+  std::vector<Stamp> pose_stamps;
+  std::vector<MapSnapshot> maps;
+  std::vector<RobotState> states;
+};
+
+LaserScan scanAt(double seconds) {
+  LaserScan scan;
+  scan.stamp = Stamp::fromSeconds(seconds);
+  scan.angle_min_rad = -0.5;
+  scan.angle_increment_rad = 0.5;
+  scan.range_min_m = 0.02;
+  scan.range_max_m = 4.0;
+  scan.ranges_m = {1.0f, 1.0f, 1.0f};
+  return scan;
+}
+
+// 10 Hz scans for `seconds`, with wheel ticks before each.
+std::deque<Sample> drive(double seconds) {
+  std::deque<Sample> samples;
+  for (int i = 0; i < static_cast<int>(seconds * 10); ++i) {
+    const double t = 100.0 + 0.1 * i;
+    samples.push_back(WheelTicks{Stamp::fromSeconds(t), 10 * i, 10 * i});
+    samples.push_back(scanAt(t));
+  }
+  return samples;
+}
+
+TEST(RobotRunnerTest, PublishesMapsAtThePeriodOfTheSampleClockAndAFinalOne) {
+  VectorSource source(drive(5.0));  // 50 scans over 4.9 s
+  RobotPipeline pipeline(MappingSettings{}, SensorMounting{},
+                         std::make_unique<OdometryEstimator>(DiffDriveParams{}, OdometryNoise{}));
+  RecordingOutput output;
+  RunnerSettings settings;
+  settings.map_period_s = 1.0;
+  RobotRunner runner(settings, source, pipeline, output);
+  std::atomic<bool> stop{false};
+  const RunSummary summary = runner.run(stop);
+  EXPECT_EQ(summary.samples, 100u);
+  EXPECT_FALSE(summary.stopped_early);
+  EXPECT_EQ(output.pose_stamps.size(), 100u);
+  // Maps at t = 100.0 (first scan), 101.0, 102.0, 103.0, 104.0, then the final one.
+  ASSERT_EQ(output.maps.size(), 6u);
+  for (std::size_t i = 0; i + 1 < output.maps.size(); ++i) {
+    EXPECT_FALSE(output.maps[i].is_final);
+    EXPECT_EQ(output.maps[i].sequence, i + 1);
+  }
+  const MapSnapshot& last = output.maps.back();
+  EXPECT_TRUE(last.is_final);
+  EXPECT_EQ(last.scans_inserted, 50u);
+  EXPECT_EQ(last.map, pipeline.grid().toGridMap());
+  EXPECT_EQ(last.trajectory.size(), 50u);
+  EXPECT_EQ(summary.maps_published, 6u);
+  EXPECT_EQ(output.states.front(), RobotState::kRunning);
+  EXPECT_EQ(output.states.back(), RobotState::kFinished);
+}
+
+TEST(RobotRunnerTest, StopFlagEndsTheRunWithAFinalMap) {
+  VectorSource source(drive(5.0));
+  RobotPipeline pipeline(MappingSettings{}, SensorMounting{},
+                         std::make_unique<OdometryEstimator>(DiffDriveParams{}, OdometryNoise{}));
+  RecordingOutput output;
+  RobotRunner runner(RunnerSettings{}, source, pipeline, output);
+  std::atomic<bool> stop{true};
+  const RunSummary summary = runner.run(stop);
+  EXPECT_TRUE(summary.stopped_early);
+  EXPECT_EQ(summary.samples, 0u);
+  ASSERT_EQ(output.maps.size(), 1u);
+  EXPECT_TRUE(output.maps.front().is_final);
+}
+
+TEST(DecimateTrajectoryTest, KeepsFirstAndLastAndSpreadsTheRest) {
+  std::vector<TrajectoryPoint> trajectory;
+  for (int i = 0; i < 101; ++i) {
+    trajectory.push_back({Stamp{i}, SE2(i, 0, 0)});
+  }
+  const auto five = decimateTrajectory(trajectory, 5);
+  ASSERT_EQ(five.size(), 5u);
+  EXPECT_DOUBLE_EQ(five[0].x(), 0.0);
+  EXPECT_DOUBLE_EQ(five[1].x(), 25.0);
+  EXPECT_DOUBLE_EQ(five[4].x(), 100.0);
+  EXPECT_EQ(decimateTrajectory(trajectory, 1000).size(), 101u);
+  EXPECT_DOUBLE_EQ(decimateTrajectory(trajectory, 1).front().x(), 100.0);
+  EXPECT_TRUE(decimateTrajectory({}, 10).empty());
+}
+
+}  // namespace
+}  // namespace mrslam::robot
