@@ -244,6 +244,10 @@ std::vector<double> Config::getDoubles(const std::string& key,
 }
 
 std::string Config::getPath(const std::string& key, const std::string& default_value) const {
+  if (!has(key)) {
+    document_->keys_read.insert(fullKey(key));
+    return default_value;
+  }
   const std::string value = getString(key, default_value);
   if (value.empty()) {
     return value;

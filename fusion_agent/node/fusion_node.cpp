@@ -123,6 +123,7 @@ void FusionNode::receiveStatus(DataReader* reader) {
 void FusionNode::publish(const GlobalMapResult& result, std::uint64_t sequence) {
   msg::GlobalMap message;
   message.sequence_number(sequence);
+  message.stamp(dds::toMsg(result.stamp));
   message.reference_robot(result.reference_robot);
   dds::gridToMsg(result.map, message.info(), message.data());
   for (const Placement& placement : result.placements) {
@@ -134,6 +135,7 @@ void FusionNode::publish(const GlobalMapResult& result, std::uint64_t sequence) 
     message.robots().push_back(robot);
 
     msg::PairwiseTransform transform;
+    transform.stamp(dds::toMsg(result.stamp));
     transform.from_robot(placement.robot_id);
     transform.to_robot(result.reference_robot);
     transform.accepted(placement.placed);

@@ -84,8 +84,7 @@ int runFusion(const FusionConfig& config) {
       break;
     }
   }
-  spdlog::info("fusion: wrote {} ({} maps refused)", config.output_folder,
-               node.rejected().total());
+  spdlog::info("fusion: wrote {} ({} maps refused)", config.output_folder, node.rejected().total());
   return 0;
 }
 
@@ -99,7 +98,8 @@ int main(int argc, char** argv) {
   double max_runtime = -1.0;
   std::string log_level = "info";
   app.add_option("--config", config_path, "fusion config YAML")->required();
-  app.add_option("--domain", domain, "DDS domain id (overrides the config)")->check(CLI::Range(0, 232));
+  app.add_option("--domain", domain, "DDS domain id (overrides the config)")
+      ->check(CLI::Range(0, 232));
   app.add_option("--out", out, "output folder (overrides the config)");
   app.add_option("--max-runtime", max_runtime, "give up after this many seconds (0: never)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");

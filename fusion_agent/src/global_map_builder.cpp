@@ -1,5 +1,6 @@
 #include "mrslam/fusion/global_map_builder.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -98,6 +99,7 @@ GlobalMapResult buildGlobalMap(const std::vector<RobotMap>& maps, const FusionCo
   result.reference_robot = chooseReference(maps, config);
   std::vector<PlacedMap> placed_maps;
   for (const RobotMap& map : maps) {
+    result.stamp = std::max(result.stamp, map.stamp);
     Placement placement = placeRobot(map.robot_id, result.reference_robot, config);
     if (placement.placed) {
       placed_maps.push_back({&map.map, placement.T_reference_robot});

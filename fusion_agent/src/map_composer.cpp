@@ -3,25 +3,55 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+
+#include <Eigen/Geometry>
 
 namespace mrslam::fusion {
 
-void placedBounds(const std::vector<PlacedMap>& maps, Eigen::Vector2d& min_m,
+namespace {
+
+// The box of cells [min, max) that holds every known cell of a map; nothing when none is known.
+std::optional<Eigen::AlignedBox2i> knownCellBox(const GridMap& map) {
+  Eigen::AlignedBox2i box;
+  const GridGeometry& g = map.geometry;
+  for (int cy = 0; cy < g.height; ++cy) {
+    for (int cx = 0; cx < g.width; ++cx) {
+      if (map.at(cx, cy) != GridMap::kUnknown) {
+        box.extend(Eigen::Vector2i(cx, cy));
+      }
+    }
+  }
+  if (box.isEmpty()) {
+    return std::nullopt;
+  }
+  return Eigen::AlignedBox2i(box.min(), box.max() + Eigen::Vector2i::Ones());
+}
+
+}  // namespace
+
+bool placedBounds(const std::vector<PlacedMap>& maps, Eigen::Vector2d& min_m,
                   Eigen::Vector2d& max_m) {
   min_m = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   max_m = -min_m;
+  bool any = false;
   for (const PlacedMap& placed : maps) {
+    const std::optional<Eigen::AlignedBox2i> box = knownCellBox(*placed.map);
+    if (!box) {
+      continue;
+    }
+    any = true;
     const GridGeometry& g = placed.map->geometry;
-    const Eigen::Vector2d size(g.width * g.resolution_m, g.height * g.resolution_m);
-    for (const Eigen::Vector2d& corner :
-         {g.origin_m, Eigen::Vector2d(g.origin_m + Eigen::Vector2d(size.x(), 0.0)),
-          Eigen::Vector2d(g.origin_m + Eigen::Vector2d(0.0, size.y())),
-          Eigen::Vector2d(g.origin_m + size)}) {
-      const Eigen::Vector2d p = placed.T_reference_robot * corner;
+    for (const auto corner : {Eigen::AlignedBox2i::BottomLeft, Eigen::AlignedBox2i::BottomRight,
+                              Eigen::AlignedBox2i::TopLeft, Eigen::AlignedBox2i::TopRight}) {
+      const Eigen::Vector2d p_robot =
+          g.origin_m + box->corner(corner).cast<double>() * g.resolution_m;
+      const Eigen::Vector2d p = placed.T_reference_robot * p_robot;
       min_m = min_m.cwiseMin(p);
       max_m = max_m.cwiseMax(p);
     }
   }
+  return any;
 }
 
 namespace {
@@ -30,9 +60,11 @@ namespace {
 GridGeometry globalGeometry(const std::vector<PlacedMap>& maps, double resolution) {
   Eigen::Vector2d min_m;
   Eigen::Vector2d max_m;
-  placedBounds(maps, min_m, max_m);
   GridGeometry geometry;
   geometry.resolution_m = resolution;
+  if (!placedBounds(maps, min_m, max_m)) {
+    return geometry;  // nothing known: an empty map
+  }
   const double min_cx = std::floor(min_m.x() / resolution + 1e-9);
   const double min_cy = std::floor(min_m.y() / resolution + 1e-9);
   geometry.origin_m = Eigen::Vector2d(min_cx * resolution, min_cy * resolution);
@@ -96,7 +128,8 @@ GridMap composeGlobalMap(const std::vector<PlacedMap>& maps, const ComposerSetti
     if (known[i] != 0) {
       const float clamped =
           std::clamp(sum[i], -settings.max_abs_log_odds, settings.max_abs_log_odds);
-      global.cells[i] = static_cast<std::int8_t>(std::lround(100.0 * logOddsToProbability(clamped)));
+      global.cells[i] =
+          static_cast<std::int8_t>(std::lround(100.0 * logOddsToProbability(clamped)));
     }
   }
   return global;

@@ -31,7 +31,9 @@ msg::Pose2D toMsg(const SE2& pose) {
   return out;
 }
 
-SE2 fromMsg(const msg::Pose2D& pose) { return SE2(pose.x(), pose.y(), pose.theta()); }
+SE2 fromMsg(const msg::Pose2D& pose) {
+  return SE2(pose.x(), pose.y(), pose.theta());
+}
 
 void gridToMsg(const GridMap& map, msg::GridInfo& info, std::vector<std::uint8_t>& data) {
   info.resolution(map.geometry.resolution_m);
@@ -57,7 +59,8 @@ Result<GridMap> gridFromMsg(const msg::GridInfo& info, const std::vector<std::ui
   }
   if (origin.theta() != 0.0) {
     return Result<GridMap>::failure("the origin is rotated (theta " +
-                                    std::to_string(origin.theta()) + "); grids must be axis-aligned");
+                                    std::to_string(origin.theta()) +
+                                    "); grids must be axis-aligned");
   }
   const std::uint64_t cells = static_cast<std::uint64_t>(info.width()) * info.height();
   if (cells > max_cells || info.width() > 1u << 20 || info.height() > 1u << 20) {

@@ -44,8 +44,8 @@ Participant::Participant(const DdsSettings& settings, const std::string& name)
     : domain_id_(settings.domain_id) {
   loadProfilesOnce(settings.profiles_file);
   auto* factory = DomainParticipantFactory::get_instance();
-  participant_ = factory->create_participant_with_profile(settings.domain_id,
-                                                          settings.participant_profile);
+  participant_ =
+      factory->create_participant_with_profile(settings.domain_id, settings.participant_profile);
   if (participant_ == nullptr) {
     throw DdsError("cannot create DDS participant '" + name + "' on domain " +
                    std::to_string(settings.domain_id) + " with profile '" +

@@ -28,6 +28,7 @@ struct Options {
   std::string config_path;
   int domain = -1;
   double speed = -1.0;
+  std::string log;
   std::string out;
   std::string trajectory_out;
   bool no_dds = false;
@@ -60,15 +61,15 @@ int runRobot(const Options& options, const RobotConfig& config) {
   if (!options.no_dds) {
     node = std::make_unique<mrslam::robot::RobotNode>(config.dds, config.robot_id);
   }
-  mrslam::robot::RobotOutput& output = node ? static_cast<mrslam::robot::RobotOutput&>(*node)
-                                            : no_output;
+  mrslam::robot::RobotOutput& output =
+      node ? static_cast<mrslam::robot::RobotOutput&>(*node) : no_output;
   spdlog::info("{}: running on {}", config.robot_id, source->describe());
   mrslam::robot::RobotRunner runner(config.runner, *source, *pipeline, output);
   const auto summary = runner.run(mrslam::shutdownRequested());
   const auto counters = source->counters();
   spdlog::info("{}: {} samples, {} scans, {} maps published, {} malformed records skipped",
-               config.robot_id, summary.samples, pipeline->counters().scans,
-               summary.maps_published, counters.malformed_records);
+               config.robot_id, summary.samples, pipeline->counters().scans, summary.maps_published,
+               counters.malformed_records);
   writeOutputs(options, *pipeline, config);
   if (node && config.delivery_readers > 0 &&
       !node->waitForMapDelivery(config.delivery_readers, config.delivery_timeout_s)) {
@@ -88,9 +89,11 @@ int main(int argc, char** argv) {
   app.add_option("--config", options.config_path, "robot config YAML")->required();
   app.add_option("--domain", options.domain, "DDS domain id (overrides the config)")
       ->check(CLI::Range(0, 232));
-  app.add_option("--speed", options.speed,
-                 "replay speed factor of the log clock, 0 = as fast as possible (overrides the config)")
+  app.add_option(
+         "--speed", options.speed,
+         "replay speed factor of the log clock, 0 = as fast as possible (overrides the config)")
       ->check(CLI::Range(0.0, 1000.0));
+  app.add_option("--log", options.log, "replay this log instead of the configured source's");
   app.add_option("--out", options.out, "write the final map (YAML/PGM/PNG) into this folder");
   app.add_option("--trajectory-out", options.trajectory_out,
                  "write the pose at every scan in TUM format to this file");
@@ -103,6 +106,12 @@ int main(int argc, char** argv) {
     RobotConfig config = mrslam::robot::loadRobotConfig(options.config_path);
     if (options.domain >= 0) {
       config.dds.domain_id = options.domain;
+    }
+    if (!options.log.empty()) {
+      config.source.path = options.log;
+      if (config.source.type == mrslam::robot::SourceType::kSimulator) {
+        config.source.type = mrslam::robot::SourceType::kLog;
+      }
     }
     if (options.speed >= 0.0) {
       config.runner.speed = options.speed;

@@ -68,8 +68,7 @@ void RobotNode::publishMap(const MapSnapshot& snapshot) {
     map_message_.trajectory().push_back(dds::toMsg(pose));
   }
   if (!map_writer_->write(&map_message_)) {
-    spdlog::error("{}: the local map {} could not be written to DDS", robot_id_,
-                  snapshot.sequence);
+    spdlog::error("{}: the local map {} could not be written to DDS", robot_id_, snapshot.sequence);
   }
 }
 

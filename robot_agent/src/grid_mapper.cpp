@@ -26,8 +26,8 @@ void GridMapper::insertScan(const LaserScan& scan, const SE2& T_map_robot) {
       continue;
     }
     const double angle = scan.beamAngle(i);
-    const Eigen::Vector2d end = T_map_laser * Eigen::Vector2d(length * std::cos(angle),
-                                                              length * std::sin(angle));
+    const Eigen::Vector2d end =
+        T_map_laser * Eigen::Vector2d(length * std::cos(angle), length * std::sin(angle));
     grid_.insertRay(origin, end, hit);
   }
 }

@@ -8,8 +8,8 @@ SE2 diffDriveIncrement(double left_m, double right_m, double track_width_m) {
   const double distance = 0.5 * (left_m + right_m);
   const double dtheta = (right_m - left_m) / track_width_m;
   // Exact arc: the chord of length 2 (d / dθ) sin(dθ / 2) at half the turn.
-  const double chord = std::abs(dtheta) < 1e-9 ? distance
-                                               : 2.0 * distance / dtheta * std::sin(0.5 * dtheta);
+  const double chord =
+      std::abs(dtheta) < 1e-9 ? distance : 2.0 * distance / dtheta * std::sin(0.5 * dtheta);
   return SE2(chord * std::cos(0.5 * dtheta), chord * std::sin(0.5 * dtheta), dtheta);
 }
 
@@ -18,7 +18,8 @@ OdometryEstimator::OdometryEstimator(const DiffDriveParams& platform, const Odom
 
 void OdometryEstimator::addWheelTicks(const WheelTicks& ticks) {
   if (last_ticks_) {
-    const double left_m = platform_.ticksToMetres(static_cast<double>(ticks.left - last_ticks_->left));
+    const double left_m =
+        platform_.ticksToMetres(static_cast<double>(ticks.left - last_ticks_->left));
     const double right_m =
         platform_.ticksToMetres(static_cast<double>(ticks.right - last_ticks_->right));
     applyIncrement(diffDriveIncrement(left_m, right_m, platform_.track_width_m));

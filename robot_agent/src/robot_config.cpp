@@ -12,8 +12,8 @@ SourceSettings loadSource(const Config& section) {
   SourceSettings source;
   const std::string type =
       section.getChoice("type", "simulator", {"simulator", "log", "breezyslam", "carmen"});
-  source.type = type == "simulator" ? SourceType::kSimulator
-                : type == "log"     ? SourceType::kLog
+  source.type = type == "simulator"    ? SourceType::kSimulator
+                : type == "log"        ? SourceType::kLog
                 : type == "breezyslam" ? SourceType::kBreezySlam
                                        : SourceType::kCarmen;
   source.path = section.getPath("path", "");
@@ -28,7 +28,8 @@ SourceSettings loadSource(const Config& section) {
 
 DiffDriveParams loadPlatform(const Config& section) {
   DiffDriveParams platform;
-  platform.wheel_radius_m = section.getDouble("wheel_radius_m", platform.wheel_radius_m, {1e-3, 2.0});
+  platform.wheel_radius_m =
+      section.getDouble("wheel_radius_m", platform.wheel_radius_m, {1e-3, 2.0});
   platform.track_width_m = section.getDouble("track_width_m", platform.track_width_m, {1e-2, 5.0});
   platform.ticks_per_revolution =
       section.getDouble("ticks_per_revolution", platform.ticks_per_revolution, {1.0, 1e7});
@@ -37,17 +38,19 @@ DiffDriveParams loadPlatform(const Config& section) {
 
 SensorMounting loadMounting(const Config& laser, const Config& imu) {
   SensorMounting mounting;
-  mounting.T_robot_laser = SE2(laser.getDouble("x_m", 0.0, {-5.0, 5.0}),
-                               laser.getDouble("y_m", 0.0, {-5.0, 5.0}),
-                               laser.getDouble("yaw_rad", 0.0, {-M_PI, M_PI}));
+  mounting.T_robot_laser =
+      SE2(laser.getDouble("x_m", 0.0, {-5.0, 5.0}), laser.getDouble("y_m", 0.0, {-5.0, 5.0}),
+          laser.getDouble("yaw_rad", 0.0, {-M_PI, M_PI}));
   mounting.imu_yaw_offset_rad = imu.getDouble("yaw_offset_rad", 0.0, {-M_PI, M_PI});
   return mounting;
 }
 
 OdometryNoise loadOdometryNoise(const Config& section) {
   OdometryNoise noise;
-  noise.translation_per_m = section.getDouble("translation_per_m", noise.translation_per_m, {0.0, 10.0});
-  noise.rotation_per_rad = section.getDouble("rotation_per_rad", noise.rotation_per_rad, {0.0, 10.0});
+  noise.translation_per_m =
+      section.getDouble("translation_per_m", noise.translation_per_m, {0.0, 10.0});
+  noise.rotation_per_rad =
+      section.getDouble("rotation_per_rad", noise.rotation_per_rad, {0.0, 10.0});
   noise.rotation_per_m = section.getDouble("rotation_per_m", noise.rotation_per_m, {0.0, 10.0});
   return noise;
 }
@@ -62,8 +65,10 @@ MappingSettings loadMapping(const Config& section) {
   LogOddsParams& params = mapping.log_odds;
   params.hit = static_cast<float>(log_odds.getDouble("hit", params.hit, {0.01, 10.0}));
   params.miss = static_cast<float>(log_odds.getDouble("miss", params.miss, {-10.0, -0.01}));
-  params.clamp_min = static_cast<float>(log_odds.getDouble("clamp_min", params.clamp_min, {-50.0, -0.1}));
-  params.clamp_max = static_cast<float>(log_odds.getDouble("clamp_max", params.clamp_max, {0.1, 50.0}));
+  params.clamp_min =
+      static_cast<float>(log_odds.getDouble("clamp_min", params.clamp_min, {-50.0, -0.1}));
+  params.clamp_max =
+      static_cast<float>(log_odds.getDouble("clamp_max", params.clamp_max, {0.1, 50.0}));
   return mapping;
 }
 
@@ -71,10 +76,12 @@ void loadPublish(const Config& section, RobotConfig& config) {
   RunnerSettings& runner = config.runner;
   runner.speed = section.getDouble("speed", runner.speed, {0.0, 1000.0});
   runner.map_period_s = section.getDouble("map_period_s", runner.map_period_s, {0.0, 3600.0});
-  runner.status_period_s = section.getDouble("status_period_s", runner.status_period_s, {0.0, 3600.0});
-  runner.trajectory_points = static_cast<std::size_t>(
-      section.getInt("trajectory_points", static_cast<long long>(runner.trajectory_points), {0, 1e6}));
-  config.delivery_readers = static_cast<int>(section.getInt("delivery_readers", config.delivery_readers, {0, 64}));
+  runner.status_period_s =
+      section.getDouble("status_period_s", runner.status_period_s, {0.0, 3600.0});
+  runner.trajectory_points = static_cast<std::size_t>(section.getInt(
+      "trajectory_points", static_cast<long long>(runner.trajectory_points), {0, 1e6}));
+  config.delivery_readers =
+      static_cast<int>(section.getInt("delivery_readers", config.delivery_readers, {0, 64}));
   config.delivery_timeout_s =
       section.getDouble("delivery_timeout_s", config.delivery_timeout_s, {0.0, 3600.0});
 }

@@ -14,8 +14,8 @@ std::vector<SE2> decimateTrajectory(const std::vector<TrajectoryPoint>& trajecto
   poses.reserve(count);
   for (std::size_t k = 0; k < count; ++k) {
     // Index k of count spread over [0, size - 1], the last one exactly the last pose.
-    const std::size_t i = count == 1 ? trajectory.size() - 1
-                                     : k * (trajectory.size() - 1) / (count - 1);
+    const std::size_t i =
+        count == 1 ? trajectory.size() - 1 : k * (trajectory.size() - 1) / (count - 1);
     poses.push_back(trajectory[i].T_map_robot);
   }
   return poses;
@@ -68,8 +68,9 @@ void RobotRunner::pace(Stamp stamp) {
   if (log_elapsed_s <= 0.0) {
     return;  // a stamp from before the start (out of order): no waiting
   }
-  const auto target = wall_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                        std::chrono::duration<double>(log_elapsed_s / settings_.speed));
+  const auto target =
+      wall_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                        std::chrono::duration<double>(log_elapsed_s / settings_.speed));
   std::this_thread::sleep_until(target);
 }
 

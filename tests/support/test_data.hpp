@@ -26,9 +26,9 @@ inline std::string binaryPath(const std::string& relative) {
 /// A fresh, empty scratch folder for one test.
 inline std::filesystem::path scratchFolder(const std::string& name) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::filesystem::path folder = std::filesystem::temp_directory_path() / "mrslam-tests" /
-                                 (std::string(info->test_suite_name()) + "." + info->name() +
-                                  "." + name);
+  std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / "mrslam-tests" /
+      (std::string(info->test_suite_name()) + "." + info->name() + "." + name);
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
   return folder;
@@ -37,10 +37,10 @@ inline std::filesystem::path scratchFolder(const std::string& name) {
 }  // namespace mrslam::test
 
 /// Skips the test (reported as skipped, never as passed) when a shared data file is absent.
-#define MRSLAM_REQUIRE_SHARED_DATA(relative)                                                 \
-  do {                                                                                       \
-    if (!std::filesystem::exists(::mrslam::test::sharedDataPath(relative))) {                \
-      GTEST_SKIP() << "needs " << ::mrslam::test::sharedDataPath(relative)                   \
-                   << " (../shared/data beside the project); absent here";                  \
-    }                                                                                        \
+#define MRSLAM_REQUIRE_SHARED_DATA(relative)                                  \
+  do {                                                                        \
+    if (!std::filesystem::exists(::mrslam::test::sharedDataPath(relative))) { \
+      GTEST_SKIP() << "needs " << ::mrslam::test::sharedDataPath(relative)    \
+                   << " (../shared/data beside the project); absent here";    \
+    }                                                                         \
   } while (0)

@@ -64,13 +64,14 @@ bool waitForAll(std::vector<std::unique_ptr<ChildProcess>>& children, double tim
 int runDemo(const DemoOptions& options) {
   const fs::path out = fs::absolute(options.out);
   fs::create_directories(out / "logs");
-  const std::string robot_program = (fs::path(options.bin_dir) / "robot_agent" / "robot_agent").string();
+  const std::string robot_program =
+      (fs::path(options.bin_dir) / "robot_agent" / "robot_agent").string();
   const std::string fusion_program =
       (fs::path(options.bin_dir) / "fusion_agent" / "fusion_agent").string();
   std::vector<std::string> fusion_argv = agentArguments(
       fusion_program, (fs::path(options.config_dir) / "sim_fusion.yaml").string(), options);
-  fusion_argv.insert(fusion_argv.end(), {"--out", out.string(), "--max-runtime",
-                                         std::to_string(options.timeout_s)});
+  fusion_argv.insert(fusion_argv.end(),
+                     {"--out", out.string(), "--max-runtime", std::to_string(options.timeout_s)});
   auto fusion = std::make_unique<ChildProcess>(fusion_argv, (out / "logs" / "fusion.log").string());
   std::vector<std::unique_ptr<ChildProcess>> robots;
   for (int robot = 1; robot <= 3; ++robot) {
@@ -82,7 +83,8 @@ int runDemo(const DemoOptions& options) {
     robots.push_back(
         std::make_unique<ChildProcess>(argv, (out / "logs" / (name + ".log")).string()));
   }
-  spdlog::info("demo: 3 robot agents and 1 fusion agent started; logs in {}", (out / "logs").string());
+  spdlog::info("demo: 3 robot agents and 1 fusion agent started; logs in {}",
+               (out / "logs").string());
   const bool robots_ok = waitForAll(robots, options.timeout_s);
   std::vector<std::unique_ptr<ChildProcess>> fusion_only;
   fusion_only.push_back(std::move(fusion));
@@ -103,7 +105,8 @@ int main(int argc, char** argv) {
   DemoOptions options;
   app.add_option("--config-dir", options.config_dir, "folder of sim_robot*.yaml, sim_fusion.yaml")
       ->required();
-  app.add_option("--bin-dir", options.bin_dir, "build folder holding robot_agent/ and fusion_agent/")
+  app.add_option("--bin-dir", options.bin_dir,
+                 "build folder holding robot_agent/ and fusion_agent/")
       ->required();
   app.add_option("--out", options.out, "output folder")->capture_default_str();
   app.add_option("--domain", options.domain, "DDS domain id (default: the configs')")

@@ -54,7 +54,8 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
     args.push_back(const_cast<char*>(arg.c_str()));
   }
   args.push_back(nullptr);
-  const int error = posix_spawn(&pid_, argv.front().c_str(), &actions, nullptr, args.data(), environ);
+  const int error =
+      posix_spawn(&pid_, argv.front().c_str(), &actions, nullptr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (error != 0) {
     throw std::runtime_error("cannot start " + argv.front() + ": " + std::strerror(error));

@@ -99,6 +99,7 @@ TEST(ConfigTest, RelativePathsAreTakenFromTheConfigFolder) {
       Config::loadString("log: ../data/a.log\nabs: /tmp/x\n", "/etc/mrslam/r.yaml");
   EXPECT_EQ(config.getPath("log", ""), "/etc/data/a.log");
   EXPECT_EQ(config.getPath("abs", ""), "/tmp/x");
+  EXPECT_EQ(config.getPath("absent", "relative/default.xml"), "relative/default.xml");
 }
 
 }  // namespace

@@ -22,7 +22,8 @@ GridMap smallMap() {
 }
 
 TEST(ConvertTest, StampRoundTripsIncludingNegativeTimes) {
-  for (const std::int64_t ns : {0LL, 1LL, 999999999LL, 1234567890123456789LL, -1LL, -1500000000LL}) {
+  for (const std::int64_t ns :
+       {0LL, 1LL, 999999999LL, 1234567890123456789LL, -1LL, -1500000000LL}) {
     EXPECT_EQ(fromMsg(toMsg(Stamp{ns})).ns, ns);
   }
   const msg::Time time = toMsg(Stamp{-1500000000});

@@ -59,8 +59,9 @@ TEST(ParticipantTest, ParticipantUsesTheLargeSharedMemorySegment) {
   ASSERT_EQ(qos.transport().user_transports.size(), 2u);
   bool found_shm = false;
   for (const auto& transport : qos.transport().user_transports) {
-    if (const auto* shm = dynamic_cast<const eprosima::fastdds::rtps::SharedMemTransportDescriptor*>(
-            transport.get())) {
+    if (const auto* shm =
+            dynamic_cast<const eprosima::fastdds::rtps::SharedMemTransportDescriptor*>(
+                transport.get())) {
       found_shm = true;
       EXPECT_GE(shm->segment_size(), 16u * 1024u * 1024u);
     }

@@ -33,8 +33,10 @@ TEST(FusionConfigTest, LoadsEveryKey) {
   const FusionConfig config = loadFusionConfig(writeConfig(
       "fusion_id: f1\nreference_robot: a\nrobots:\n  - id: b\n    T_reference_robot: [1, 2, 0.5]\n"
       "expected_robots:\n  - id: a\n  - id: b\nexit_when_final: true\nmax_runtime_s: 60\n"
-      "publish_period_s: 0.5\nwrite_period_s: 5\noutput:\n  folder: maps\n  write_robot_maps: false\n"
-      "limits:\n  max_cells: 1000\n  allowed_robots:\n    - id: a\nglobal_map:\n  resolution_m: 0.1\n"
+      "publish_period_s: 0.5\nwrite_period_s: 5\noutput:\n  folder: maps\n  write_robot_maps: "
+      "false\n"
+      "limits:\n  max_cells: 1000\n  allowed_robots:\n    - id: a\nglobal_map:\n  resolution_m: "
+      "0.1\n"
       "dds:\n  domain_id: 7\n"));
   EXPECT_EQ(config.fusion_id, "f1");
   EXPECT_EQ(config.reference_robot, "a");
@@ -57,8 +59,10 @@ TEST(FusionConfigTest, BadValuesNameFileLineAndKey) {
   EXPECT_THAT(loadError("reference: a\n"), HasSubstr("fusion.yaml:1: reference: unknown key"));
   EXPECT_THAT(loadError("robots:\n  - id: b\n    T_reference_robot: [1, 2]\n"),
               HasSubstr("fusion.yaml:3: robots[0].T_reference_robot: must have exactly 3 numbers"));
-  EXPECT_THAT(loadError("robots:\n  - id: ../x\n"), HasSubstr("robots[0].id: '../x' is not a robot id"));
-  EXPECT_THAT(loadError("exit_when_final: true\n"), HasSubstr("exit_when_final: needs expected_robots"));
+  EXPECT_THAT(loadError("robots:\n  - id: ../x\n"),
+              HasSubstr("robots[0].id: '../x' is not a robot id"));
+  EXPECT_THAT(loadError("exit_when_final: true\n"),
+              HasSubstr("exit_when_final: needs expected_robots"));
   EXPECT_THAT(loadError("dds:\n  domain_id: 300\n"), HasSubstr("fusion.yaml:2: dds.domain_id"));
 }
 

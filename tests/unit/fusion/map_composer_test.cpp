@@ -55,16 +55,38 @@ TEST(MapComposerTest, ShiftedMapLandsAtItsPlace) {
     const Eigen::Vector2d p = T_reference_robot * p_robot;
     const auto cx = static_cast<int>(std::floor((p.x() - global.geometry.origin_m.x()) / 0.1));
     const auto cy = static_cast<int>(std::floor((p.y() - global.geometry.origin_m.y()) / 0.1));
-    return global.at(cx, cy);
+    return global.geometry.contains(cx, cy) ? global.at(cx, cy) : std::int8_t{-100};
   };
   EXPECT_EQ(valueAt(geometry.cellCenter(2, 3)), 100);
   EXPECT_EQ(valueAt(geometry.cellCenter(5, 5)), 0);
-  EXPECT_EQ(valueAt(geometry.cellCenter(7, 1)), GridMap::kUnknown);
-  // The bounds of a 1 m square turned by 90° about (1, -2): x in [0, 1], y in [-2, -1].
-  EXPECT_NEAR(global.geometry.origin_m.x(), 0.0, 1e-9);
-  EXPECT_NEAR(global.geometry.origin_m.y(), -2.0, 1e-9);
-  EXPECT_EQ(global.geometry.width, 10);
-  EXPECT_EQ(global.geometry.height, 10);
+  EXPECT_EQ(valueAt(geometry.cellCenter(3, 4)), GridMap::kUnknown);
+  EXPECT_EQ(valueAt(geometry.cellCenter(7, 1)), -100);  // outside the known cells: cropped
+  // Known cells span [0.2, 0.6] x [0.3, 0.6] in the robot map; turned by 90° about (1, -2):
+  // x in [0.4, 0.7], y in [-1.8, -1.4].
+  EXPECT_NEAR(global.geometry.origin_m.x(), 0.4, 1e-9);
+  EXPECT_NEAR(global.geometry.origin_m.y(), -1.8, 1e-9);
+  EXPECT_EQ(global.geometry.width, 3);
+  EXPECT_EQ(global.geometry.height, 4);
+}
+
+TEST(MapComposerTest, GlobalMapIsCroppedToTheKnownCells) {
+  GridGeometry geometry;
+  geometry.width = 50;
+  geometry.height = 40;
+  geometry.origin_m = Eigen::Vector2d(-1.25, -1.0);
+  GridMap unknown(geometry, GridMap::kUnknown);
+  EXPECT_EQ(composeGlobalMap({{&unknown, SE2()}}, {}).geometry.cellCount(), 0u);
+  GridMap patch = unknown;
+  patch.at(10, 20) = 100;
+  patch.at(12, 25) = 0;
+  const GridMap global = composeGlobalMap({{&unknown, SE2()}, {&patch, SE2()}}, {});
+  EXPECT_EQ(global.geometry.width, 3);
+  EXPECT_EQ(global.geometry.height, 6);
+  EXPECT_NEAR((global.geometry.origin_m - geometry.cellCenter(10, 20)).norm(),
+              std::hypot(0.025, 0.025), 1e-9);
+  EXPECT_EQ(global.at(0, 0), 100);
+  EXPECT_EQ(global.at(2, 5), 0);
+  EXPECT_EQ(global.at(1, 1), GridMap::kUnknown);
 }
 
 TEST(MapComposerTest, EvidenceAddsUpInLogOdds) {

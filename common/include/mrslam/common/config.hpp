@@ -49,7 +49,8 @@ class Config {
   /// A list of exactly `size` numbers (any size when size is 0).
   std::vector<double> getDoubles(const std::string& key, const std::vector<double>& default_value,
                                  std::size_t size = 0, Range range = {}) const;
-  /// A file path; relative paths are taken relative to the config file's folder.
+  /// A file path; a relative path in the file is taken relative to the config file's folder
+  /// (the default is returned as given).
   std::string getPath(const std::string& key, const std::string& default_value) const;
 
   /// A nested map; a missing key gives an empty section (every value takes its default).

@@ -11,8 +11,8 @@ namespace mrslam {
 /// axis of the map frame. Cells are row-major with row 0 at the bottom (smallest y).
 struct GridGeometry {
   double resolution_m = 0.05;
-  int width = 0;   ///< cells along x
-  int height = 0;  ///< cells along y
+  int width = 0;                                       ///< cells along x
+  int height = 0;                                      ///< cells along y
   Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();  ///< map-frame corner of cell (0, 0)
 
   std::size_t cellCount() const {

@@ -32,6 +32,8 @@ struct Stamp {
 };
 
 /// Seconds from a to b.
-inline double secondsBetween(Stamp a, Stamp b) { return static_cast<double>(b.ns - a.ns) * 1e-9; }
+inline double secondsBetween(Stamp a, Stamp b) {
+  return static_cast<double>(b.ns - a.ns) * 1e-9;
+}
 
 }  // namespace mrslam

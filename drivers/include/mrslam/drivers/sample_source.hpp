@@ -11,8 +11,8 @@ namespace mrslam::drivers {
 
 /// Counters every source keeps; they go into the robot status.
 struct SourceCounters {
-  std::uint64_t samples = 0;          ///< samples handed out
-  std::uint64_t malformed_records = 0;  ///< lines / frames dropped as malformed
+  std::uint64_t samples = 0;              ///< samples handed out
+  std::uint64_t malformed_records = 0;    ///< lines / frames dropped as malformed
   std::uint64_t out_of_order_stamps = 0;  ///< samples whose stamp is older than the one before
 };
 

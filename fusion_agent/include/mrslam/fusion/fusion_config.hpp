@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "mrslam/common/se2.hpp"
 #include "mrslam/common/dds_settings.hpp"
+#include "mrslam/common/se2.hpp"
 #include "mrslam/fusion/map_composer.hpp"
 
 namespace mrslam::fusion {
@@ -17,12 +17,12 @@ struct FusionConfig {
   /// Known placements of robots' map origins in the reference frame (T_reference_robot).
   std::map<std::string, SE2> fixed_transforms;
   std::vector<std::string> expected_robots;  ///< robots the run waits for
-  bool exit_when_final = false;  ///< exit once every expected robot has sent its final map
-  double max_runtime_s = 0.0;    ///< give up after this long (exit code 2); 0: run until stopped
-  double publish_period_s = 1.0; ///< time between global map updates
-  double write_period_s = 0.0;   ///< time between map file writes while running; 0: at exit only
+  bool exit_when_final = false;   ///< exit once every expected robot has sent its final map
+  double max_runtime_s = 0.0;     ///< give up after this long (exit code 2); 0: run until stopped
+  double publish_period_s = 1.0;  ///< time between global map updates
+  double write_period_s = 0.0;    ///< time between map file writes while running; 0: at exit only
   std::string output_folder = "out/fusion";  ///< where the map files go
-  bool write_robot_maps = true;  ///< also write each robot's received map (robots/<id>.*)
+  bool write_robot_maps = true;        ///< also write each robot's received map (robots/<id>.*)
   std::size_t max_cells = 16'000'000;  ///< larger grids from the network are refused
   std::vector<std::string> allowed_robots;  ///< robot ids accepted; empty: any
   ComposerSettings composer;

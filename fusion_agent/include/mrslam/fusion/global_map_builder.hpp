@@ -21,6 +21,7 @@ struct Placement {
 
 struct GlobalMapResult {
   std::string reference_robot;
+  Stamp stamp;  ///< the newest stamp of the maps it was built from
   GridMap map;
   std::vector<Placement> placements;  ///< one per received robot, in robot id order
 };

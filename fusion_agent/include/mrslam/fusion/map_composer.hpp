@@ -27,10 +27,12 @@ struct ComposerSettings {
   float max_abs_log_odds = 5.6f;
 };
 
-/// The axis-aligned box (reference frame) that holds every placed map.
-void placedBounds(const std::vector<PlacedMap>& maps, Eigen::Vector2d& min_m, Eigen::Vector2d& max_m);
+/// The axis-aligned box (reference frame) that holds every known cell of the placed maps;
+/// false when no cell is known.
+bool placedBounds(const std::vector<PlacedMap>& maps, Eigen::Vector2d& min_m,
+                  Eigen::Vector2d& max_m);
 
-/// The global map; empty (0 × 0) when no map is given.
+/// The global map, cropped to the known cells; empty (0 × 0) when no cell is known.
 GridMap composeGlobalMap(const std::vector<PlacedMap>& maps, const ComposerSettings& settings);
 
 }  // namespace mrslam::fusion

@@ -34,16 +34,15 @@ class Participant {
   template <class PubSubType>
   eprosima::fastdds::dds::DataWriter* createWriter(const std::string& topic_name,
                                                    const std::string& profile) {
-    return createWriter(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()),
-                        profile);
+    return createWriter(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()), profile);
   }
 
   template <class PubSubType>
   eprosima::fastdds::dds::DataReader* createReader(
       const std::string& topic_name, const std::string& profile,
       eprosima::fastdds::dds::DataReaderListener* listener) {
-    return createReader(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()),
-                        profile, listener);
+    return createReader(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()), profile,
+                        listener);
   }
 
   eprosima::fastdds::dds::DomainParticipant* get() const { return participant_; }

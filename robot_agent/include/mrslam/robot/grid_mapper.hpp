@@ -11,7 +11,8 @@ struct MappingSettings {
   double resolution_m = 0.05;  ///< grid cell size
   LogOddsParams log_odds;      ///< inverse sensor model
   double max_range_m = 0.0;    ///< hits beyond are not trusted (no return); 0: the scan's range_max
-  double clearing_range_m = 0.0;  ///< beams with no return clear free space up to this range; 0: off
+  double clearing_range_m =
+      0.0;  ///< beams with no return clear free space up to this range; 0: off
 };
 
 class GridMapper {

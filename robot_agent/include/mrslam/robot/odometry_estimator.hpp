@@ -11,9 +11,9 @@ namespace mrslam::robot {
 
 /// Odometry noise, proportional to the motion (standard deviations).
 struct OdometryNoise {
-  double translation_per_m = 0.05;    ///< σ of translation per metre driven
-  double rotation_per_rad = 0.05;     ///< σ of rotation per radian turned
-  double rotation_per_m = 0.02;       ///< σ of rotation (rad) per metre driven
+  double translation_per_m = 0.05;  ///< σ of translation per metre driven
+  double rotation_per_rad = 0.05;   ///< σ of rotation per radian turned
+  double rotation_per_m = 0.02;     ///< σ of rotation (rad) per metre driven
 };
 
 /// The pose change of a differential-drive robot whose wheels rolled `left_m` and `right_m`,

@@ -39,15 +39,16 @@ struct StatusReport {
 class RobotOutput {
  public:
   virtual ~RobotOutput() = default;
-  virtual void publishPose(Stamp stamp, const SE2& T_map_robot, const Eigen::Matrix3d& covariance) = 0;
+  virtual void publishPose(Stamp stamp, const SE2& T_map_robot,
+                           const Eigen::Matrix3d& covariance) = 0;
   virtual void publishMap(const MapSnapshot& snapshot) = 0;
   virtual void publishStatus(const StatusReport& report) = 0;
 };
 
 struct RunnerSettings {
-  double speed = 0.0;             ///< replay speed factor of the sample clock; 0: as fast as possible
-  double map_period_s = 1.0;      ///< sample-clock time between published maps
-  double status_period_s = 1.0;   ///< sample-clock time between status reports
+  double speed = 0.0;         ///< replay speed factor of the sample clock; 0: as fast as possible
+  double map_period_s = 1.0;  ///< sample-clock time between published maps
+  double status_period_s = 1.0;          ///< sample-clock time between status reports
   std::size_t trajectory_points = 2000;  ///< most trajectory poses sent with a map
 };
 
