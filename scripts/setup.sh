@@ -25,6 +25,11 @@ for package in "${packages[@]}"; do
   fi
 done
 
+# fastddsgen runs on Java: any Java will do; Debian's when there is none.
+if ! command -v java >/dev/null 2>&1; then
+  missing+=(default-jre-headless)
+fi
+
 if [ ${#missing[@]} -gt 0 ]; then
   echo "mrslam setup: installing ${missing[*]}"
   sudo_cmd=()
@@ -32,8 +37,8 @@ if [ ${#missing[@]} -gt 0 ]; then
     sudo_cmd=(sudo)
   fi
   "${sudo_cmd[@]}" apt-get update -q
-  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends \
-    "${missing[@]}"
+  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q \
+    --no-install-recommends "${missing[@]}"
 fi
 
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then
