@@ -1,0 +1,67 @@
+#pragma once
+// The interface of every map merger: two occupancy grids in, the rigid transform between them
+// (or the reason there is none) out. Mergers know nothing of DDS, files or robots.
+//
+// Cell coordinates: (column, row) of a GridMap, row 0 at the bottom (smallest y); integer values
+// are cell centres. A GridTransform maps cell coordinates of map `from` to cell coordinates of
+// map `to`: p_to = R(theta) * p_from + t.
+
+#include <Eigen/Core>
+#include <string>
+
+#include "mrslam/common/grid_map.hpp"
+#include "mrslam/common/se2.hpp"
+
+namespace mrslam::fusion {
+
+/// A rigid transform between the cell coordinates of two grids.
+struct GridTransform {
+  double theta_rad = 0.0;
+  Eigen::Vector2d t_cells = Eigen::Vector2d::Zero();
+
+  Eigen::Vector2d apply(const Eigen::Vector2d& cell_from) const {
+    const double c = std::cos(theta_rad);
+    const double s = std::sin(theta_rad);
+    return Eigen::Vector2d(c * cell_from.x() - s * cell_from.y(),
+                           s * cell_from.x() + c * cell_from.y()) +
+           t_cells;
+  }
+  GridTransform inverse() const {
+    GridTransform inverse;
+    inverse.theta_rad = -theta_rad;
+    const double c = std::cos(theta_rad);
+    const double s = std::sin(theta_rad);
+    inverse.t_cells =
+        -Eigen::Vector2d(c * t_cells.x() + s * t_cells.y(), -s * t_cells.x() + c * t_cells.y());
+    return inverse;
+  }
+};
+
+/// The metric transform T_to_from between the two maps' frames (both grids at one resolution):
+/// the pose of map `from`'s frame in map `to`'s frame.
+SE2 gridTransformToMetric(const GridTransform& T_to_from_cells, const GridGeometry& from,
+                          const GridGeometry& to);
+/// The inverse: cell transform from a metric T_to_from.
+GridTransform metricToGridTransform(const SE2& T_to_from, const GridGeometry& from,
+                                    const GridGeometry& to);
+
+/// What a merge found, or why it refused.
+struct MergeResult {
+  bool accepted = false;
+  GridTransform T_to_from;    ///< valid when accepted
+  double verification = 0.0;  ///< V = agr / (agr + dis) of the overlap at T_to_from
+  double entropy = 0.0;       ///< map entropy of the merged pair at T_to_from
+  int trials = 0;             ///< segment pairs (or hypotheses) tried
+  std::string method;         ///< the merger (or chain step) that produced the result
+  std::string reason;         ///< why it refused; empty when accepted
+};
+
+class MapMerger {
+ public:
+  virtual ~MapMerger() = default;
+  /// Finds T_to_from between two maps of the same resolution, with no prior on it.
+  virtual MergeResult merge(const GridMap& from, const GridMap& to) = 0;
+  virtual std::string name() const = 0;
+};
+
+}  // namespace mrslam::fusion
