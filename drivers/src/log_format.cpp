@@ -8,6 +8,7 @@
 #include "mrslam/drivers/breezyslam_reader.hpp"
 #include "mrslam/drivers/carmen_reader.hpp"
 #include "mrslam/drivers/line_reader.hpp"
+#include "mrslam/drivers/mrslam_log.hpp"
 
 namespace mrslam::drivers {
 namespace {
@@ -74,6 +75,8 @@ const char* logFormatName(LogFormat format) {
       return "breezyslam";
     case LogFormat::kCarmen:
       return "carmen";
+    case LogFormat::kMrslam:
+      return "mrslam";
     case LogFormat::kUnknown:
       break;
   }
@@ -87,6 +90,9 @@ LogFormat detectLogFormat(const std::string& path) {
   for (std::size_t read = 0; read < kDetectMaxLines && lines.next(line); ++read) {
     if (lines.lastLineCut()) {
       return LogFormat::kUnknown;
+    }
+    if (read == 0 && line == kMrslamLogMagic) {
+      return LogFormat::kMrslam;
     }
     splitFields(line, fields);
     if (fields.empty() || fields[0].front() == '#') {
@@ -114,10 +120,16 @@ std::unique_ptr<SampleSource> openLogReader(const std::string& path, MalformedPo
       settings.malformed_policy = policy;
       return std::make_unique<CarmenReader>(std::move(settings));
     }
+    case LogFormat::kMrslam: {
+      MrslamLogSettings settings;
+      settings.path = path;
+      settings.malformed_policy = policy;
+      return std::make_unique<MrslamLogReader>(std::move(settings));
+    }
     case LogFormat::kUnknown:
       break;
   }
-  throw std::runtime_error(path + ": unknown log format (neither a BreezySLAM nor a CARMEN log)");
+  throw std::runtime_error(path + ": unknown log format (not an mrslam, BreezySLAM or CARMEN log)");
 }
 
 }  // namespace mrslam::drivers
