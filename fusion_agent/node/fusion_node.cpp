@@ -133,19 +133,26 @@ void FusionNode::publish(const GlobalMapResult& result, std::uint64_t sequence) 
     robot.T_reference_robot(dds::toMsg(placement.T_reference_robot));
     robot.verification(placement.verification.value_or(0.0));
     message.robots().push_back(robot);
-
-    msg::PairwiseTransform transform;
-    transform.stamp(dds::toMsg(result.stamp));
-    transform.from_robot(placement.robot_id);
-    transform.to_robot(result.reference_robot);
-    transform.accepted(placement.placed);
-    transform.T_to_from(dds::toMsg(placement.T_reference_robot));
-    transform.verification(placement.verification.value_or(0.0));
-    transform.method(placement.source);
-    transform.reason(placement.placed ? "" : placement.source);
-    transforms_writer_->write(&transform);
   }
   global_map_writer_->write(&message);
+}
+
+}  // namespace mrslam::fusion
+
+namespace mrslam::fusion {
+
+void FusionNode::publishAttempt(const MergeAttempt& attempt) {
+  msg::PairwiseTransform transform;
+  transform.from_robot(attempt.from);
+  transform.to_robot(attempt.to);
+  transform.accepted(attempt.result.accepted);
+  transform.T_to_from(dds::toMsg(attempt.T_to_from));
+  transform.verification(attempt.result.verification);
+  transform.entropy(attempt.result.entropy);
+  transform.trials(static_cast<std::uint32_t>(attempt.result.trials));
+  transform.method(attempt.result.method);
+  transform.reason(attempt.result.reason);
+  transforms_writer_->write(&transform);
 }
 
 }  // namespace mrslam::fusion

@@ -8,6 +8,7 @@
 #include "mrslam/dds/participant.hpp"
 #include "mrslam/fusion/fusion_config.hpp"
 #include "mrslam/fusion/global_map_builder.hpp"
+#include "mrslam/fusion/merge_scheduler.hpp"
 #include "mrslam/fusion/robot_map_store.hpp"
 
 namespace mrslam::fusion {
@@ -18,6 +19,8 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   ~FusionNode() override;
 
   void publish(const GlobalMapResult& result, std::uint64_t sequence);
+  /// One pairwise merge, accepted or refused, on the transforms topic.
+  void publishAttempt(const MergeAttempt& attempt);
 
   /// Maps refused, by reason.
   const ErrorCounter& rejected() const { return rejected_; }

@@ -32,6 +32,16 @@ void readFixedTransforms(const Config& config, FusionConfig& fusion) {
   }
 }
 
+void loadMerge(const Config& section, FusionConfig& fusion) {
+  fusion.merge_method = section.getChoice("method", fusion.merge_method, {"none"});
+  MergeSchedulerSettings& merge = fusion.merge;
+  merge.min_interval_s = section.getDouble("min_interval_s", merge.min_interval_s, {0.0, 3600.0});
+  merge.material_change = section.getDouble("material_change", merge.material_change, {0.0, 10.0});
+  merge.refine_accepted = section.getBool("refine_accepted", merge.refine_accepted);
+  fusion.final_merge_timeout_s =
+      section.getDouble("final_timeout_s", fusion.final_merge_timeout_s, {0.0, 3600.0});
+}
+
 }  // namespace
 
 FusionConfig loadFusionConfig(const std::string& path) {
@@ -40,6 +50,9 @@ FusionConfig loadFusionConfig(const std::string& path) {
   fusion.fusion_id = config.getString("fusion_id", fusion.fusion_id);
   fusion.reference_robot = config.getString("reference_robot", "");
   readFixedTransforms(config, fusion);
+  if (!fusion.fixed_transforms.empty() && fusion.reference_robot.empty()) {
+    config.fail("robots", "configured transforms need reference_robot (the frame they are in)");
+  }
   fusion.expected_robots = readIdList(config, "expected_robots");
   fusion.exit_when_final = config.getBool("exit_when_final", fusion.exit_when_final);
   if (fusion.exit_when_final && fusion.expected_robots.empty()) {
@@ -58,6 +71,7 @@ FusionConfig loadFusionConfig(const std::string& path) {
   fusion.allowed_robots = readIdList(limits, "allowed_robots");
   const Config global_map = config.section("global_map");
   fusion.composer.resolution_m = global_map.getDouble("resolution_m", 0.0, {0.0, 10.0});
+  loadMerge(config.section("merge"), fusion);
   fusion.dds = loadDdsSettings(config.section("dds"));
   config.checkNoUnknownKeys();
   return fusion;

@@ -11,33 +11,6 @@ namespace mrslam::fusion {
 
 namespace {
 
-std::string chooseReference(const std::vector<RobotMap>& maps, const FusionConfig& config) {
-  if (!config.reference_robot.empty()) {
-    return config.reference_robot;
-  }
-  return maps.empty() ? std::string() : maps.front().robot_id;
-}
-
-Placement placeRobot(const std::string& robot_id, const std::string& reference,
-                     const FusionConfig& config) {
-  Placement placement;
-  placement.robot_id = robot_id;
-  if (robot_id == reference) {
-    placement.placed = true;
-    placement.source = "reference";
-    return placement;
-  }
-  const auto fixed = config.fixed_transforms.find(robot_id);
-  if (fixed != config.fixed_transforms.end()) {
-    placement.placed = true;
-    placement.T_reference_robot = fixed->second;
-    placement.source = "config";
-  } else {
-    placement.source = "no transform to " + reference + " yet";
-  }
-  return placement;
-}
-
 // A distinct colour per robot (BGR) for pictures.
 Eigen::Vector3i robotColour(std::size_t index) {
   static const Eigen::Vector3i kPalette[] = {{0, 0, 230},   {0, 160, 0},   {230, 80, 0},
@@ -94,19 +67,27 @@ void writeReceivedJson(const std::vector<RobotMap>& maps, const std::string& pat
 
 }  // namespace
 
-GlobalMapResult buildGlobalMap(const std::vector<RobotMap>& maps, const FusionConfig& config) {
-  GlobalMapResult result;
-  result.reference_robot = chooseReference(maps, config);
-  std::vector<PlacedMap> placed_maps;
-  for (const RobotMap& map : maps) {
-    result.stamp = std::max(result.stamp, map.stamp);
-    Placement placement = placeRobot(map.robot_id, result.reference_robot, config);
-    if (placement.placed) {
-      placed_maps.push_back({&map.map, placement.T_reference_robot});
-    }
-    result.placements.push_back(std::move(placement));
+std::string chooseReference(const std::vector<RobotMap>& maps, const FusionConfig& config) {
+  if (!config.reference_robot.empty()) {
+    return config.reference_robot;
   }
-  result.map = composeGlobalMap(placed_maps, config.composer);
+  return maps.empty() ? std::string() : maps.front().robot_id;
+}
+
+GlobalMapResult buildGlobalMap(const std::vector<RobotMap>& maps, const std::string& reference,
+                               const std::vector<Placement>& placements,
+                               const ComposerSettings& composer) {
+  GlobalMapResult result;
+  result.reference_robot = reference;
+  result.placements = placements;
+  std::vector<PlacedMap> placed_maps;
+  for (std::size_t i = 0; i < maps.size() && i < placements.size(); ++i) {
+    result.stamp = std::max(result.stamp, maps[i].stamp);
+    if (placements[i].placed) {
+      placed_maps.push_back({&maps[i].map, placements[i].T_reference_robot});
+    }
+  }
+  result.map = composeGlobalMap(placed_maps, composer);
   return result;
 }
 

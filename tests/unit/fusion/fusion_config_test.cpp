@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "mrslam/fusion/global_map_builder.hpp"
+#include "mrslam/fusion/team_graph.hpp"
 #include "test_data.hpp"
 
 namespace mrslam::fusion {
@@ -57,8 +58,8 @@ TEST(FusionConfigTest, BadValuesNameFileLineAndKey) {
   EXPECT_THAT(loadError("publish_period_s: 0\n"),
               HasSubstr("fusion.yaml:1: publish_period_s: 0 is out of range"));
   EXPECT_THAT(loadError("reference: a\n"), HasSubstr("fusion.yaml:1: reference: unknown key"));
-  EXPECT_THAT(loadError("robots:\n  - id: b\n    T_reference_robot: [1, 2]\n"),
-              HasSubstr("fusion.yaml:3: robots[0].T_reference_robot: must have exactly 3 numbers"));
+  EXPECT_THAT(loadError("reference_robot: a\nrobots:\n  - id: b\n    T_reference_robot: [1, 2]\n"),
+              HasSubstr("fusion.yaml:4: robots[0].T_reference_robot: must have exactly 3 numbers"));
   EXPECT_THAT(loadError("robots:\n  - id: ../x\n"),
               HasSubstr("robots[0].id: '../x' is not a robot id"));
   EXPECT_THAT(loadError("exit_when_final: true\n"),
@@ -67,9 +68,8 @@ TEST(FusionConfigTest, BadValuesNameFileLineAndKey) {
 }
 
 TEST(GlobalMapBuilderTest, PlacesConfiguredRobotsAndReportsTheOthers) {
-  FusionConfig config;
-  config.reference_robot = "a";
-  config.fixed_transforms["b"] = SE2(1.0, 0.0, 0.0);
+  TeamGraph graph;
+  graph.addConfigured("b", "a", SE2(1.0, 0.0, 0.0));
   GridGeometry geometry;
   geometry.width = 4;
   geometry.height = 4;
@@ -80,18 +80,25 @@ TEST(GlobalMapBuilderTest, PlacesConfiguredRobotsAndReportsTheOthers) {
   for (auto& map : maps) {
     map.map = GridMap(geometry, 0);
   }
-  const GlobalMapResult result = buildGlobalMap(maps, config);
+  const GlobalMapResult result =
+      buildGlobalMap(maps, "a", graph.place("a", {"a", "b", "c"}), ComposerSettings{});
   EXPECT_EQ(result.reference_robot, "a");
   ASSERT_EQ(result.placements.size(), 3u);
   EXPECT_TRUE(result.placements[0].placed);
   EXPECT_EQ(result.placements[0].source, "reference");
   EXPECT_TRUE(result.placements[1].placed);
+  EXPECT_EQ(result.placements[1].source, "config");
   EXPECT_DOUBLE_EQ(result.placements[1].T_reference_robot.x(), 1.0);
   EXPECT_FALSE(result.placements[2].placed);
-  EXPECT_THAT(result.placements[2].source, HasSubstr("no transform"));
+  EXPECT_THAT(result.placements[2].source, HasSubstr("no verified transform"));
   // a and b, 0.2 m wide each, 1 m apart: the global map spans 1.2 m.
   EXPECT_EQ(result.map.geometry.width, 24);
   EXPECT_EQ(result.map.geometry.height, 4);
+}
+
+TEST(FusionConfigTest, ConfiguredTransformsNeedAReference) {
+  EXPECT_THAT(loadError("robots:\n  - id: b\n"),
+              HasSubstr("robots: configured transforms need reference_robot"));
 }
 
 }  // namespace

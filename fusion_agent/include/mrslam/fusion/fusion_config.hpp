@@ -8,6 +8,7 @@
 #include "mrslam/common/dds_settings.hpp"
 #include "mrslam/common/se2.hpp"
 #include "mrslam/fusion/map_composer.hpp"
+#include "mrslam/fusion/merge_scheduler.hpp"
 
 namespace mrslam::fusion {
 
@@ -26,6 +27,10 @@ struct FusionConfig {
   std::size_t max_cells = 16'000'000;  ///< larger grids from the network are refused
   std::vector<std::string> allowed_robots;  ///< robot ids accepted; empty: any
   ComposerSettings composer;
+  std::string merge_method = "none";     ///< merger that finds the transforms; "none": config only
+  MergeSchedulerSettings merge;          ///< when and how often pairs are merged
+  double final_merge_timeout_s = 120.0;  ///< at the end, wait this long for the last merges
+  MergeScheduler::MergerFactory make_merger;  ///< set when merge_method is not "none"
   DdsSettings dds;
 };
 

@@ -6,18 +6,10 @@
 #include <vector>
 
 #include "mrslam/fusion/fusion_config.hpp"
+#include "mrslam/fusion/placement.hpp"
 #include "mrslam/fusion/robot_map_store.hpp"
 
 namespace mrslam::fusion {
-
-/// Where one robot's map origin lies in the reference frame, if known.
-struct Placement {
-  std::string robot_id;
-  bool placed = false;
-  SE2 T_reference_robot;
-  std::optional<double> verification;  ///< V of the merge that placed it (none when configured)
-  std::string source;                  ///< "reference", "config", or why it is not placed
-};
 
 struct GlobalMapResult {
   std::string reference_robot;
@@ -26,8 +18,14 @@ struct GlobalMapResult {
   std::vector<Placement> placements;  ///< one per received robot, in robot id order
 };
 
-/// Placements from the configured transforms, and the composed map of the placed robots.
-GlobalMapResult buildGlobalMap(const std::vector<RobotMap>& maps, const FusionConfig& config);
+/// The reference robot: the configured one, or else the first robot with a map.
+std::string chooseReference(const std::vector<RobotMap>& maps, const FusionConfig& config);
+
+/// The global map of the placed robots, in the reference robot's frame. `placements` holds one
+/// entry per robot of `maps`, in the same order.
+GlobalMapResult buildGlobalMap(const std::vector<RobotMap>& maps, const std::string& reference,
+                               const std::vector<Placement>& placements,
+                               const ComposerSettings& composer);
 
 /// Writes global_map.{pgm,yaml,png,bt}, transforms.json, robots.json (what was received from
 /// each robot) and (if asked) robots/<id>.{pgm,yaml}

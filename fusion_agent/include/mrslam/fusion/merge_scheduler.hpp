@@ -1,0 +1,89 @@
+#pragma once
+// Runs pairwise map merges in the background: rate-limited, re-run when a map has changed
+// materially, verified results into the TeamGraph (a verified transform is kept and refined,
+// never thrown away by a later refusal).
+
+#include <condition_variable>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "mrslam/fusion/merge/map_merger.hpp"
+#include "mrslam/fusion/robot_map_store.hpp"
+#include "mrslam/fusion/team_graph.hpp"
+
+namespace mrslam::fusion {
+
+struct MergeSchedulerSettings {
+  double min_interval_s = 5.0;   ///< least time between two merges of one pair
+  double material_change = 0.1;  ///< re-merge a pair when a map's known cells grew by this fraction
+  bool refine_accepted = true;   ///< keep re-merging placed pairs as maps grow (refinement)
+};
+
+/// One merge that was run, for the transforms topic and the logs.
+struct MergeAttempt {
+  std::string from;
+  std::string to;
+  MergeResult result;
+  SE2 T_to_from;  ///< metric, valid when accepted
+  double time_ms = 0.0;
+};
+
+class MergeScheduler {
+ public:
+  using MergerFactory = std::function<std::unique_ptr<MapMerger>()>;
+  using Clock = std::chrono::steady_clock;
+
+  MergeScheduler(const MergeSchedulerSettings& settings, MergerFactory factory, TeamGraph& graph);
+  ~MergeScheduler();
+  MergeScheduler(const MergeScheduler&) = delete;
+  MergeScheduler& operator=(const MergeScheduler&) = delete;
+
+  /// Starts the background thread.
+  void start();
+  /// Hands the newest maps to the background thread (returns at once).
+  void offer(std::vector<RobotMap> maps);
+  /// Waits until the maps last offered have been considered; false on time-out.
+  bool waitIdle(double timeout_s);
+  /// Merges every due pair of `maps` now, on the calling thread (the background thread's step).
+  std::vector<MergeAttempt> runDue(const std::vector<RobotMap>& maps, Clock::time_point now);
+  /// Attempts made since the last call.
+  std::vector<MergeAttempt> takeAttempts();
+  void stop();
+
+ private:
+  struct PairState {
+    Clock::time_point last_attempt{};
+    std::size_t known_from = 0;
+    std::size_t known_to = 0;
+    bool attempted = false;
+  };
+
+  bool isDue(const PairState& state, std::size_t known_from, std::size_t known_to, bool placed,
+             Clock::time_point now) const;
+  MergeAttempt mergePair(const RobotMap& from, const RobotMap& to);
+  void loop();
+
+  MergeSchedulerSettings settings_;
+  MergerFactory factory_;
+  TeamGraph& graph_;
+  std::map<std::pair<std::string, std::string>, PairState> pairs_;
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable idle_;
+  std::vector<RobotMap> offered_;
+  std::uint64_t offered_version_ = 0;
+  std::uint64_t done_version_ = 0;
+  bool stopping_ = false;
+  std::vector<MergeAttempt> attempts_;
+  std::thread thread_;
+};
+
+/// Known cells of a map (for the material-change rule).
+std::size_t knownCellCount(const GridMap& map);
+
+}  // namespace mrslam::fusion

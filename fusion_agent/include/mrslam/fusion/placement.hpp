@@ -1,0 +1,20 @@
+#pragma once
+// Where a robot's map lies in the team's reference frame.
+
+#include <optional>
+#include <string>
+
+#include "mrslam/common/se2.hpp"
+
+namespace mrslam::fusion {
+
+/// Where one robot's map origin lies in the reference frame, if known.
+struct Placement {
+  std::string robot_id;
+  bool placed = false;
+  SE2 T_reference_robot;
+  std::optional<double> verification;  ///< V of the merge that placed it (none when configured)
+  std::string source;                  ///< "reference", "config", or why it is not placed
+};
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,59 @@
+#pragma once
+// The team's pairwise transforms and the placement of every robot in one frame.
+//
+// Edges are verified pairwise estimates T_to_from (the pose of robot `from`'s map origin in robot
+// `to`'s map frame) or transforms fixed by configuration. A verified edge is kept until a
+// better-verified estimate of the same pair replaces it; a later refusal never removes it.
+// Robots are placed through the best path from the reference robot: the path whose product of
+// verification indices is largest (configured edges count as V = 1). A robot with no path to the
+// reference is reported as not placed, never guessed.
+
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mrslam/common/se2.hpp"
+#include "mrslam/common/stamp.hpp"
+#include "mrslam/fusion/placement.hpp"
+
+namespace mrslam::fusion {
+
+struct PairwiseEstimate {
+  std::string from;
+  std::string to;
+  SE2 T_to_from;
+  double verification = 1.0;  ///< V of the merge (1 for configured transforms)
+  double entropy = 0.0;
+  std::string method;  ///< "config", "seed", "feature", ...
+  bool configured = false;
+};
+
+class TeamGraph {
+ public:
+  /// A transform fixed by configuration (never replaced by estimates).
+  void addConfigured(const std::string& from, const std::string& to, const SE2& T_to_from);
+  /// Stores a verified estimate unless the pair already holds a better-verified one (or a
+  /// configured one). Returns whether it was stored.
+  bool addVerified(const PairwiseEstimate& estimate);
+
+  /// The stored estimate between two robots, expressed as T_to_from (inverted when stored the
+  /// other way round).
+  std::optional<PairwiseEstimate> estimate(const std::string& from, const std::string& to) const;
+  std::vector<PairwiseEstimate> estimates() const;
+
+  /// Placement of each of `robots` in the frame of `reference`.
+  std::vector<Placement> place(const std::string& reference,
+                               const std::vector<std::string>& robots) const;
+
+ private:
+  using PairKey = std::pair<std::string, std::string>;  // ordered (smaller id first)
+  static PairKey keyOf(const std::string& a, const std::string& b);
+
+  mutable std::mutex mutex_;
+  std::map<PairKey, PairwiseEstimate> edges_;
+};
+
+}  // namespace mrslam::fusion

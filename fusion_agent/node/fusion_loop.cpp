@@ -1,0 +1,132 @@
+#include "fusion_loop.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <thread>
+
+namespace mrslam::fusion {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+FusionLoop::FusionLoop(const FusionConfig& config) : config_(config), node_(config, store_) {
+  for (const auto& [robot_id, T_reference_robot] : config.fixed_transforms) {
+    graph_.addConfigured(robot_id, config.reference_robot, T_reference_robot);
+  }
+  if (config.make_merger) {
+    scheduler_ = std::make_unique<MergeScheduler>(config.merge, config.make_merger, graph_);
+    scheduler_->start();
+  }
+}
+
+bool FusionLoop::allExpectedFinal() const {
+  for (const std::string& robot_id : config_.expected_robots) {
+    if (!store_.isFinal(robot_id)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::string FusionLoop::missingRobots() const {
+  std::string missing;
+  for (const std::string& robot_id : config_.expected_robots) {
+    if (!store_.isFinal(robot_id)) {
+      missing += (missing.empty() ? "" : ", ") + robot_id +
+                 (store_.has(robot_id) ? " (no final map)" : " (no map)");
+    }
+  }
+  return missing;
+}
+
+void FusionLoop::publishAttempts() {
+  if (!scheduler_) {
+    return;
+  }
+  for (const MergeAttempt& attempt : scheduler_->takeAttempts()) {
+    node_.publishAttempt(attempt);
+    changed_ = changed_ || attempt.result.accepted;
+  }
+}
+
+void FusionLoop::publish() {
+  maps_ = store_.snapshot();
+  const std::string reference = chooseReference(maps_, config_);
+  std::vector<std::string> robot_ids;
+  for (const RobotMap& map : maps_) {
+    robot_ids.push_back(map.robot_id);
+  }
+  result_ = buildGlobalMap(maps_, reference, graph_.place(reference, robot_ids), config_.composer);
+  node_.publish(result_, ++sequence_);
+  written_ = false;
+}
+
+void FusionLoop::writeFiles() {
+  writeFusionOutputs(result_, maps_, config_.output_folder, config_.write_robot_maps);
+  written_ = true;
+}
+
+void FusionLoop::finalMerges() {
+  if (!scheduler_) {
+    return;
+  }
+  scheduler_->offer(store_.snapshot());
+  if (!scheduler_->waitIdle(config_.final_merge_timeout_s)) {
+    spdlog::warn("fusion: the last merges did not finish within {} s",
+                 config_.final_merge_timeout_s);
+  }
+  publishAttempts();
+}
+
+int FusionLoop::run(const std::atomic<bool>& shutdown) {
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last_publish = start;
+  Clock::time_point last_write = start;
+  spdlog::info("fusion: {} listening on domain {}", config_.fusion_id, config_.dds.domain_id);
+  while (true) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const bool complete = config_.exit_when_final && allExpectedFinal();
+    const bool timed_out =
+        config_.max_runtime_s > 0.0 && secondsSince(start) > config_.max_runtime_s;
+    const bool stopping = complete || timed_out || shutdown.load();
+    if (store_.version() != offered_version_) {
+      offered_version_ = store_.version();
+      changed_ = true;
+      if (scheduler_ && !stopping) {
+        scheduler_->offer(store_.snapshot());
+      }
+    }
+    publishAttempts();
+    if (stopping) {
+      finalMerges();
+      publish();
+      writeFiles();
+      if (timed_out && config_.exit_when_final && !complete) {
+        spdlog::error("fusion: gave up after {} s; missing: {}", config_.max_runtime_s,
+                      missingRobots());
+        return 2;
+      }
+      break;
+    }
+    if (changed_ && secondsSince(last_publish) >= config_.publish_period_s) {
+      changed_ = false;
+      publish();
+      last_publish = Clock::now();
+    }
+    if (config_.write_period_s > 0.0 && !written_ &&
+        secondsSince(last_write) >= config_.write_period_s) {
+      writeFiles();
+      last_write = Clock::now();
+    }
+  }
+  spdlog::info("fusion: wrote {} ({} maps refused)", config_.output_folder,
+               node_.rejected().total());
+  return 0;
+}
+
+}  // namespace mrslam::fusion

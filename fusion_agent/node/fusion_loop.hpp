@@ -1,0 +1,46 @@
+#pragma once
+// The fusion agent's main loop: hands new maps to the merge scheduler, places the robots,
+// publishes the global map when something changed, writes files when due, and stops when the
+// expected robots are done, on time-out or on Ctrl-C.
+
+#include <chrono>
+#include <memory>
+
+#include "fusion_node.hpp"
+#include "mrslam/fusion/merge_scheduler.hpp"
+#include "mrslam/fusion/team_graph.hpp"
+
+namespace mrslam::fusion {
+
+class FusionLoop {
+ public:
+  explicit FusionLoop(const FusionConfig& config);
+
+  /// Runs until done; the exit code: 0 done, 2 gave up waiting for expected robots.
+  int run(const std::atomic<bool>& shutdown);
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  bool allExpectedFinal() const;
+  std::string missingRobots() const;
+  /// Rebuilds and publishes the global map from the newest maps and placements.
+  void publish();
+  void writeFiles();
+  void publishAttempts();
+  void finalMerges();
+
+  const FusionConfig& config_;
+  RobotMapStore store_;
+  TeamGraph graph_;
+  FusionNode node_;
+  std::unique_ptr<MergeScheduler> scheduler_;
+  std::vector<RobotMap> maps_;
+  GlobalMapResult result_;
+  std::uint64_t sequence_ = 0;
+  std::uint64_t offered_version_ = 0;
+  bool changed_ = false;
+  bool written_ = false;
+};
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,152 @@
+#include "mrslam/fusion/merge_scheduler.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace mrslam::fusion {
+
+std::size_t knownCellCount(const GridMap& map) {
+  std::size_t known = 0;
+  for (const std::int8_t value : map.cells) {
+    known += value != GridMap::kUnknown ? 1 : 0;
+  }
+  return known;
+}
+
+MergeScheduler::MergeScheduler(const MergeSchedulerSettings& settings, MergerFactory factory,
+                               TeamGraph& graph)
+    : settings_(settings), factory_(std::move(factory)), graph_(graph) {}
+
+MergeScheduler::~MergeScheduler() {
+  stop();
+}
+
+void MergeScheduler::start() {
+  thread_ = std::thread([this] { loop(); });
+}
+
+void MergeScheduler::stop() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) {
+    thread_.join();
+  }
+}
+
+void MergeScheduler::offer(std::vector<RobotMap> maps) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    offered_ = std::move(maps);
+    ++offered_version_;
+  }
+  wake_.notify_all();
+}
+
+bool MergeScheduler::waitIdle(double timeout_s) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return idle_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                        [this] { return done_version_ == offered_version_; });
+}
+
+std::vector<MergeAttempt> MergeScheduler::takeAttempts() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<MergeAttempt> taken;
+  taken.swap(attempts_);
+  return taken;
+}
+
+void MergeScheduler::loop() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!stopping_) {
+    wake_.wait(lock, [this] { return stopping_ || done_version_ != offered_version_; });
+    if (stopping_) {
+      break;
+    }
+    const std::uint64_t version = offered_version_;
+    const std::vector<RobotMap> maps = offered_;
+    lock.unlock();
+    std::vector<MergeAttempt> attempts = runDue(maps, Clock::now());
+    lock.lock();
+    attempts_.insert(attempts_.end(), attempts.begin(), attempts.end());
+    done_version_ = version;
+    idle_.notify_all();
+  }
+}
+
+bool MergeScheduler::isDue(const PairState& state, std::size_t known_from, std::size_t known_to,
+                           bool placed, Clock::time_point now) const {
+  if (!state.attempted) {
+    return true;
+  }
+  if (placed && !settings_.refine_accepted) {
+    return false;
+  }
+  if (now - state.last_attempt < std::chrono::duration<double>(settings_.min_interval_s)) {
+    return false;
+  }
+  const auto grew = [this](std::size_t now_known, std::size_t then_known) {
+    return static_cast<double>(now_known) >
+           static_cast<double>(then_known) * (1.0 + settings_.material_change);
+  };
+  return grew(known_from, state.known_from) || grew(known_to, state.known_to);
+}
+
+std::vector<MergeAttempt> MergeScheduler::runDue(const std::vector<RobotMap>& maps,
+                                                 Clock::time_point now) {
+  std::vector<MergeAttempt> attempts;
+  std::vector<std::size_t> known(maps.size());
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    known[i] = knownCellCount(maps[i].map);
+  }
+  for (std::size_t to = 0; to < maps.size(); ++to) {
+    for (std::size_t from = to + 1; from < maps.size(); ++from) {
+      if (known[from] == 0 || known[to] == 0) {
+        continue;
+      }
+      PairState& state = pairs_[{maps[from].robot_id, maps[to].robot_id}];
+      const bool placed = graph_.estimate(maps[from].robot_id, maps[to].robot_id).has_value();
+      if (!isDue(state, known[from], known[to], placed, now)) {
+        continue;
+      }
+      state = {now, known[from], known[to], true};
+      attempts.push_back(mergePair(maps[from], maps[to]));
+    }
+  }
+  return attempts;
+}
+
+MergeAttempt MergeScheduler::mergePair(const RobotMap& from, const RobotMap& to) {
+  MergeAttempt attempt;
+  attempt.from = from.robot_id;
+  attempt.to = to.robot_id;
+  const auto start = Clock::now();
+  if (from.map.geometry.resolution_m != to.map.geometry.resolution_m) {
+    attempt.result.reason = "the maps' resolutions differ";
+  } else {
+    attempt.result = factory_()->merge(from.map, to.map);
+  }
+  attempt.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  if (attempt.result.accepted) {
+    attempt.T_to_from =
+        gridTransformToMetric(attempt.result.T_to_from, from.map.geometry, to.map.geometry);
+    PairwiseEstimate estimate;
+    estimate.from = from.robot_id;
+    estimate.to = to.robot_id;
+    estimate.T_to_from = attempt.T_to_from;
+    estimate.verification = attempt.result.verification;
+    estimate.entropy = attempt.result.entropy;
+    estimate.method = attempt.result.method;
+    const bool stored = graph_.addVerified(estimate);
+    spdlog::info("fusion: {} → {} merged by {} (V {:.3f}, {:.0f} ms){}", from.robot_id, to.robot_id,
+                 estimate.method, estimate.verification, attempt.time_ms,
+                 stored ? "" : "; a better estimate is kept");
+  } else {
+    spdlog::info("fusion: {} → {} not merged: {}", from.robot_id, to.robot_id,
+                 attempt.result.reason);
+  }
+  return attempt;
+}
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,144 @@
+#include "mrslam/fusion/team_graph.hpp"
+
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <set>
+
+namespace mrslam::fusion {
+
+namespace {
+
+PairwiseEstimate inverted(const PairwiseEstimate& estimate) {
+  PairwiseEstimate inverse = estimate;
+  inverse.from = estimate.to;
+  inverse.to = estimate.from;
+  inverse.T_to_from = estimate.T_to_from.inverse();
+  return inverse;
+}
+
+// Cost of an edge on a path: −log V, so the cheapest path has the largest product of V.
+double edgeCost(const PairwiseEstimate& estimate) {
+  return -std::log(std::max(estimate.verification, 1e-12));
+}
+
+}  // namespace
+
+TeamGraph::PairKey TeamGraph::keyOf(const std::string& a, const std::string& b) {
+  return a < b ? PairKey{a, b} : PairKey{b, a};
+}
+
+void TeamGraph::addConfigured(const std::string& from, const std::string& to,
+                              const SE2& T_to_from) {
+  PairwiseEstimate estimate;
+  estimate.from = from;
+  estimate.to = to;
+  estimate.T_to_from = T_to_from;
+  estimate.verification = 1.0;
+  estimate.method = "config";
+  estimate.configured = true;
+  std::lock_guard<std::mutex> lock(mutex_);
+  const PairKey key = keyOf(from, to);
+  edges_[key] = key.first == from ? estimate : inverted(estimate);
+}
+
+bool TeamGraph::addVerified(const PairwiseEstimate& estimate) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const PairKey key = keyOf(estimate.from, estimate.to);
+  const auto found = edges_.find(key);
+  if (found != edges_.end() &&
+      (found->second.configured || found->second.verification > estimate.verification)) {
+    return false;
+  }
+  edges_[key] = key.first == estimate.from ? estimate : inverted(estimate);
+  return true;
+}
+
+std::optional<PairwiseEstimate> TeamGraph::estimate(const std::string& from,
+                                                    const std::string& to) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto found = edges_.find(keyOf(from, to));
+  if (found == edges_.end()) {
+    return std::nullopt;
+  }
+  return found->second.from == from ? found->second : inverted(found->second);
+}
+
+std::vector<PairwiseEstimate> TeamGraph::estimates() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<PairwiseEstimate> all;
+  for (const auto& entry : edges_) {
+    all.push_back(entry.second);
+  }
+  return all;
+}
+
+std::vector<Placement> TeamGraph::place(const std::string& reference,
+                                        const std::vector<std::string>& robots) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  // Dijkstra from the reference over −log V; each robot keeps its pose and weakest V on the way.
+  struct Reached {
+    double cost = std::numeric_limits<double>::infinity();
+    SE2 T_reference_robot;
+    double weakest_verification = 1.0;
+    bool through_estimates = false;
+  };
+  std::map<std::string, Reached> reached;
+  reached[reference].cost = 0.0;
+  using Entry = std::pair<double, std::string>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> frontier;
+  frontier.push({0.0, reference});
+  std::set<std::string> done;
+  while (!frontier.empty()) {
+    const auto [cost, robot] = frontier.top();
+    frontier.pop();
+    if (!done.insert(robot).second) {
+      continue;
+    }
+    const Reached here = reached[robot];
+    for (const auto& entry : edges_) {
+      const PairwiseEstimate& edge = entry.second;
+      if (edge.from != robot && edge.to != robot) {
+        continue;
+      }
+      // T_robot_next from the edge, whichever way it was stored.
+      const bool forward = edge.to == robot;  // edge maps `from` into `robot`
+      const std::string next = forward ? edge.from : edge.to;
+      const SE2 T_robot_next = forward ? edge.T_to_from : edge.T_to_from.inverse();
+      const double next_cost = cost + edgeCost(edge);
+      Reached& there = reached[next];
+      if (next_cost < there.cost) {
+        there.cost = next_cost;
+        there.T_reference_robot = here.T_reference_robot * T_robot_next;
+        there.weakest_verification = std::min(here.weakest_verification, edge.verification);
+        there.through_estimates = here.through_estimates || !edge.configured;
+        frontier.push({next_cost, next});
+      }
+    }
+  }
+  std::vector<Placement> placements;
+  for (const std::string& robot : robots) {
+    Placement placement;
+    placement.robot_id = robot;
+    const auto found = reached.find(robot);
+    if (robot == reference) {
+      placement.placed = true;
+      placement.source = "reference";
+    } else if (found != reached.end() && std::isfinite(found->second.cost)) {
+      placement.placed = true;
+      placement.T_reference_robot = found->second.T_reference_robot;
+      if (found->second.through_estimates) {
+        placement.verification = found->second.weakest_verification;
+        placement.source = "merge";
+      } else {
+        placement.source = "config";
+      }
+    } else {
+      placement.source = "no verified transform to " + reference + " yet";
+    }
+    placements.push_back(placement);
+  }
+  return placements;
+}
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,110 @@
+#include "mrslam/fusion/merge_scheduler.hpp"
+
+#include <gtest/gtest.h>
+
+namespace mrslam::fusion {
+namespace {
+
+// A merger whose answer the test sets; it counts its calls.
+class ScriptedMerger : public MapMerger {
+ public:
+  ScriptedMerger(int& calls, bool accept) : calls_(calls), accept_(accept) {}
+  MergeResult merge(const GridMap&, const GridMap&) override {
+    ++calls_;
+    MergeResult result;
+    result.accepted = accept_;
+    result.method = "scripted";
+    result.verification = 0.9;
+    result.T_to_from.t_cells = Eigen::Vector2d(10.0, 0.0);
+    result.reason = accept_ ? "" : "no match";
+    return result;
+  }
+  std::string name() const override { return "scripted"; }
+
+ private:
+  int& calls_;
+  bool accept_;
+};
+
+RobotMap mapOf(const std::string& id, int known_cells) {
+  RobotMap map;
+  map.robot_id = id;
+  GridGeometry geometry;
+  geometry.resolution_m = 0.1;
+  geometry.width = 100;
+  geometry.height = 100;
+  map.map = GridMap(geometry, GridMap::kUnknown);
+  for (int i = 0; i < known_cells; ++i) {
+    map.map.cells[static_cast<std::size_t>(i)] = 0;
+  }
+  return map;
+}
+
+TEST(MergeSchedulerTest, MergesNewPairsThenOnlyAfterTheIntervalAndMaterialChange) {
+  TeamGraph graph;
+  int calls = 0;
+  MergeSchedulerSettings settings;
+  settings.min_interval_s = 10.0;
+  settings.material_change = 0.1;
+  MergeScheduler scheduler(
+      settings, [&] { return std::make_unique<ScriptedMerger>(calls, true); }, graph);
+  const auto t0 = MergeScheduler::Clock::now();
+  std::vector<RobotMap> maps = {mapOf("a", 1000), mapOf("b", 1000), mapOf("c", 0)};
+  // a-b merged; c knows nothing yet.
+  auto attempts = scheduler.runDue(maps, t0);
+  ASSERT_EQ(attempts.size(), 1u);
+  EXPECT_EQ(attempts[0].from, "b");
+  EXPECT_EQ(attempts[0].to, "a");
+  EXPECT_TRUE(attempts[0].result.accepted);
+  EXPECT_NEAR(attempts[0].T_to_from.x(), 1.0, 1e-9);  // 10 cells of 0.1 m
+  ASSERT_TRUE(graph.estimate("b", "a").has_value());
+  // Too soon, and too little change.
+  EXPECT_TRUE(scheduler.runDue(maps, t0 + std::chrono::seconds(1)).empty());
+  maps[0] = mapOf("a", 1050);
+  EXPECT_TRUE(scheduler.runDue(maps, t0 + std::chrono::seconds(20)).empty());
+  maps[0] = mapOf("a", 1200);
+  EXPECT_TRUE(scheduler.runDue(maps, t0 + std::chrono::seconds(5)).empty());
+  EXPECT_EQ(scheduler.runDue(maps, t0 + std::chrono::seconds(20)).size(), 1u);
+  // c learns something: its pairs are due at once.
+  maps[2] = mapOf("c", 500);
+  EXPECT_EQ(scheduler.runDue(maps, t0 + std::chrono::seconds(21)).size(), 2u);
+  EXPECT_EQ(calls, 4);
+}
+
+TEST(MergeSchedulerTest, RefusalsLeaveVerifiedTransformsInPlace) {
+  TeamGraph graph;
+  PairwiseEstimate known;
+  known.from = "b";
+  known.to = "a";
+  known.T_to_from = SE2(3, 0, 0);
+  known.verification = 0.9;
+  graph.addVerified(known);
+  int calls = 0;
+  MergeScheduler scheduler(
+      MergeSchedulerSettings{}, [&] { return std::make_unique<ScriptedMerger>(calls, false); },
+      graph);
+  const auto attempts =
+      scheduler.runDue({mapOf("a", 10), mapOf("b", 10)}, MergeScheduler::Clock::now());
+  ASSERT_EQ(attempts.size(), 1u);
+  EXPECT_FALSE(attempts[0].result.accepted);
+  EXPECT_EQ(attempts[0].result.reason, "no match");
+  EXPECT_NEAR(graph.estimate("b", "a")->T_to_from.x(), 3.0, 1e-12);
+}
+
+TEST(MergeSchedulerTest, BackgroundThreadMergesOfferedMaps) {
+  TeamGraph graph;
+  int calls = 0;
+  MergeScheduler scheduler(
+      MergeSchedulerSettings{}, [&] { return std::make_unique<ScriptedMerger>(calls, true); },
+      graph);
+  scheduler.start();
+  scheduler.offer({mapOf("a", 10), mapOf("b", 10)});
+  ASSERT_TRUE(scheduler.waitIdle(30.0));
+  EXPECT_EQ(scheduler.takeAttempts().size(), 1u);
+  EXPECT_TRUE(scheduler.takeAttempts().empty());
+  scheduler.stop();
+  EXPECT_EQ(calls, 1);
+}
+
+}  // namespace
+}  // namespace mrslam::fusion

@@ -1,0 +1,69 @@
+#include "mrslam/fusion/team_graph.hpp"
+
+#include <gtest/gtest.h>
+
+namespace mrslam::fusion {
+namespace {
+
+PairwiseEstimate estimateOf(const std::string& from, const std::string& to, const SE2& T,
+                            double verification) {
+  PairwiseEstimate estimate;
+  estimate.from = from;
+  estimate.to = to;
+  estimate.T_to_from = T;
+  estimate.verification = verification;
+  estimate.method = "test";
+  return estimate;
+}
+
+void expectPose(const SE2& actual, const SE2& expected) {
+  EXPECT_NEAR(actual.x(), expected.x(), 1e-9);
+  EXPECT_NEAR(actual.y(), expected.y(), 1e-9);
+  EXPECT_NEAR(wrapAngle(actual.theta() - expected.theta()), 0.0, 1e-9);
+}
+
+TEST(TeamGraphTest, ChainsTransformsAndInvertsEdgesStoredTheOtherWay) {
+  TeamGraph graph;
+  const SE2 T_a_b(2.0, 0.0, M_PI / 2);
+  const SE2 T_c_b(0.0, 1.0, -0.3);  // stored as b → c: placing c needs its inverse
+  ASSERT_TRUE(graph.addVerified(estimateOf("b", "a", T_a_b, 0.9)));
+  ASSERT_TRUE(graph.addVerified(estimateOf("b", "c", T_c_b, 0.8)));
+  const auto placements = graph.place("a", {"a", "b", "c", "d"});
+  ASSERT_EQ(placements.size(), 4u);
+  EXPECT_TRUE(placements[0].placed);
+  expectPose(placements[1].T_reference_robot, T_a_b);
+  EXPECT_DOUBLE_EQ(*placements[1].verification, 0.9);
+  expectPose(placements[2].T_reference_robot, T_a_b * T_c_b.inverse());
+  EXPECT_DOUBLE_EQ(*placements[2].verification, 0.8);  // the weakest link of the path
+  EXPECT_FALSE(placements[3].placed);
+  const auto reverse = graph.estimate("a", "b");
+  ASSERT_TRUE(reverse.has_value());
+  expectPose(reverse->T_to_from, T_a_b.inverse());
+}
+
+TEST(TeamGraphTest, KeepsTheBetterVerifiedEstimateAndNeverReplacesConfiguredOnes) {
+  TeamGraph graph;
+  EXPECT_TRUE(graph.addVerified(estimateOf("b", "a", SE2(1, 0, 0), 0.8)));
+  EXPECT_FALSE(graph.addVerified(estimateOf("b", "a", SE2(5, 0, 0), 0.7)));
+  EXPECT_TRUE(graph.addVerified(estimateOf("a", "b", SE2(-1.1, 0, 0), 0.85)));
+  expectPose(graph.estimate("b", "a")->T_to_from, SE2(1.1, 0, 0));
+  graph.addConfigured("c", "a", SE2(0, 3, 0));
+  EXPECT_FALSE(graph.addVerified(estimateOf("c", "a", SE2(0, 4, 0), 0.99)));
+  const auto placements = graph.place("a", {"c"});
+  EXPECT_EQ(placements[0].source, "config");
+  EXPECT_FALSE(placements[0].verification.has_value());
+}
+
+TEST(TeamGraphTest, PlacesThroughThePathWithTheLargestProductOfV) {
+  TeamGraph graph;
+  // a-b direct but weak (0.6); a-c-b strong (0.95 · 0.95 = 0.90).
+  graph.addVerified(estimateOf("b", "a", SE2(10, 0, 0), 0.6));
+  graph.addVerified(estimateOf("c", "a", SE2(1, 0, 0), 0.95));
+  graph.addVerified(estimateOf("b", "c", SE2(1, 0, 0), 0.95));
+  const auto placements = graph.place("a", {"b"});
+  expectPose(placements[0].T_reference_robot, SE2(2, 0, 0));
+  EXPECT_DOUBLE_EQ(*placements[0].verification, 0.95);
+}
+
+}  // namespace
+}  // namespace mrslam::fusion
