@@ -118,8 +118,8 @@ std::string MrslamLogReader::describe() const {
 std::optional<Sample> MrslamLogReader::next() {
   std::string line;
   while (lines_.next(line)) {
-    if (line.empty()) {
-      continue;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) {
+      continue;  // a blank line
     }
     if (line[0] == '#') {
       if (line.rfind("# robot ", 0) == 0) {
@@ -149,6 +149,10 @@ std::optional<Sample> MrslamLogReader::parseLine(const std::string& line,
                                                  LineProblem& problem) const {
   std::vector<std::string_view> fields;
   splitFields(line, fields);
+  if (fields.empty()) {
+    problem = {"blank", "the line holds only white space"};
+    return std::nullopt;
+  }
   FieldCursor cursor(fields, problem);
   const std::string_view type = fields.front();
   Sample sample;

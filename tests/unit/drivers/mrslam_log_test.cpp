@@ -145,6 +145,18 @@ TEST(MrslamLogReaderTest, MalformedLinesAreCountedOrStopTheRun) {
   }
 }
 
+// Found by the fuzz target: a line of only white space once read past an empty field list.
+TEST(MrslamLogReaderTest, LinesOfOnlyWhiteSpaceAreBlank) {
+  const std::string path = writeLog("TICKS 0 0 0\n \n\t\t\n \r\nTICKS 5 1 1\n");
+  MrslamLogReader reader({path, MalformedPolicy::kStop});
+  int good = 0;
+  while (reader.next()) {
+    ++good;
+  }
+  EXPECT_EQ(good, 2);
+  EXPECT_EQ(reader.counters().malformed_records, 0u);
+}
+
 TEST(MrslamLogReaderTest, AFileWithoutTheHeaderIsRefused) {
   const std::string path = (test::scratchFolder("nohead") / "x.log").string();
   std::ofstream(path) << "TICKS 0 0 0\n";
