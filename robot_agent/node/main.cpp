@@ -1,13 +1,18 @@
 // robot_agent: reads one robot's sensors (devices, a log or the simulator), estimates its pose,
 // builds its occupancy grid and publishes pose, map and status on DDS.
+//
+// Replay of a log without a config: `robot_agent LOG --config-dir config [--no-dds] ...` takes
+// config/carmen.yaml or config/breezyslam.yaml by the log's format (what `./mrslam replay` runs).
 
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <optional>
 
 #include "mrslam/common/map_io.hpp"
 #include "mrslam/common/shutdown.hpp"
+#include "mrslam/drivers/log_format.hpp"
 #include "mrslam/robot/robot_config.hpp"
 #include "mrslam/robot/trajectory_io.hpp"
 #include "robot_node.hpp"
@@ -26,13 +31,30 @@ class NoOutput : public mrslam::robot::RobotOutput {
 
 struct Options {
   std::string config_path;
+  std::string config_dir = "config";
   int domain = -1;
   double speed = -1.0;
   std::string log;
+  std::string positional_log;
+  std::string estimator;
+  std::string odom_noise;
+  long long seed = -1;
   std::string out;
   std::string trajectory_out;
   bool no_dds = false;
 };
+
+// The EKF's counters, once at the end of a run.
+void logEkfSummary(const std::string& robot_id, const mrslam::robot::EkfEstimator& ekf) {
+  const mrslam::robot::EkfCounters& c = ekf.counters();
+  spdlog::info(
+      "{}: EKF: {} scans, {} matches accepted, {} gated out, {} failed; {} keyframes; IMU "
+      "heading {}/{} and yaw rate {}/{} accepted/gated, {} late IMU samples dropped, {} IMU "
+      "gaps; gyro bias {:.5f} rad/s",
+      robot_id, c.scans, c.scan_updates, c.scan_rejections, c.scan_match_failures, c.keyframes,
+      c.heading_updates, c.heading_rejections, c.yaw_rate_updates, c.yaw_rate_rejections,
+      c.late_imu, c.imu_gaps, ekf.gyroBias());
+}
 
 void writeOutputs(const Options& options, const mrslam::robot::RobotPipeline& pipeline,
                   const RobotConfig& config) {
@@ -55,7 +77,10 @@ void writeOutputs(const Options& options, const mrslam::robot::RobotPipeline& pi
 
 int runRobot(const Options& options, const RobotConfig& config) {
   auto source = mrslam::robot::openSource(config);
-  auto pipeline = mrslam::robot::makePipeline(config);
+  auto estimator = mrslam::robot::makeEstimator(config, config.estimator.type);
+  const auto* ekf = dynamic_cast<const mrslam::robot::EkfEstimator*>(estimator.get());
+  auto pipeline = std::make_unique<mrslam::robot::RobotPipeline>(config.mapping, config.mounting,
+                                                                 std::move(estimator));
   NoOutput no_output;
   std::unique_ptr<mrslam::robot::RobotNode> node;
   if (!options.no_dds) {
@@ -63,13 +88,17 @@ int runRobot(const Options& options, const RobotConfig& config) {
   }
   mrslam::robot::RobotOutput& output =
       node ? static_cast<mrslam::robot::RobotOutput&>(*node) : no_output;
-  spdlog::info("{}: running on {}", config.robot_id, source->describe());
+  spdlog::info("{}: running on {} with the {} estimator", config.robot_id, source->describe(),
+               mrslam::robot::estimatorTypeName(config.estimator.type));
   mrslam::robot::RobotRunner runner(config.runner, *source, *pipeline, output);
   const auto summary = runner.run(mrslam::shutdownRequested());
   const auto counters = source->counters();
   spdlog::info("{}: {} samples, {} scans, {} maps published, {} malformed records skipped",
                config.robot_id, summary.samples, pipeline->counters().scans, summary.maps_published,
                counters.malformed_records);
+  if (ekf != nullptr) {
+    logEkfSummary(config.robot_id, *ekf);
+  }
   writeOutputs(options, *pipeline, config);
   if (node && config.delivery_readers > 0 &&
       !node->waitForMapDelivery(config.delivery_readers, config.delivery_timeout_s)) {
@@ -80,13 +109,82 @@ int runRobot(const Options& options, const RobotConfig& config) {
   return 0;
 }
 
+// The config of --config, or by the log's format from --config-dir; then the command line's
+// overrides.
+RobotConfig loadConfig(Options& options) {
+  if (!options.positional_log.empty()) {
+    if (!options.log.empty() && options.log != options.positional_log) {
+      throw std::invalid_argument("two logs given: " + options.log + " and " +
+                                  options.positional_log);
+    }
+    options.log = options.positional_log;
+  }
+  std::string config_path = options.config_path;
+  std::optional<mrslam::robot::SourceType> detected;
+  if (config_path.empty()) {
+    if (options.log.empty()) {
+      throw std::invalid_argument("give --config, or a log to replay");
+    }
+    const mrslam::drivers::LogFormat format = mrslam::drivers::detectLogFormat(options.log);
+    if (format == mrslam::drivers::LogFormat::kUnknown) {
+      throw std::invalid_argument(options.log + ": neither a CARMEN nor a BreezySLAM log");
+    }
+    const bool carmen = format == mrslam::drivers::LogFormat::kCarmen;
+    config_path =
+        (std::filesystem::path(options.config_dir) / (carmen ? "carmen.yaml" : "breezyslam.yaml"))
+            .string();
+    detected = carmen ? mrslam::robot::SourceType::kCarmen : mrslam::robot::SourceType::kBreezySlam;
+    spdlog::info("robot_agent: {} log, config {}", mrslam::drivers::logFormatName(format),
+                 config_path);
+  }
+  RobotConfig config = mrslam::robot::loadRobotConfig(config_path);
+  if (options.domain >= 0) {
+    config.dds.domain_id = options.domain;
+  }
+  if (!options.log.empty()) {
+    config.source.path = options.log;
+    if (detected) {
+      config.source.type = *detected;
+    } else if (config.source.type == mrslam::robot::SourceType::kSimulator) {
+      config.source.type = mrslam::robot::SourceType::kLog;
+    }
+  }
+  if (options.speed >= 0.0) {
+    config.runner.speed = options.speed;
+  }
+  if (!options.estimator.empty()) {
+    config.estimator.type = mrslam::robot::parseEstimatorType(options.estimator);
+  }
+  if (!options.odom_noise.empty()) {
+    const std::uint64_t seed = config.source.odometry_noise.seed;
+    config.source.odometry_noise = mrslam::drivers::parseOdometryNoise(options.odom_noise);
+    config.source.odometry_noise.seed = seed;
+  }
+  if (options.seed >= 0) {
+    config.source.odometry_noise.seed = static_cast<std::uint64_t>(options.seed);
+  }
+  return config;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"mrslam robot agent: pose, map and status of one robot on DDS"};
   Options options;
   std::string log_level = "info";
-  app.add_option("--config", options.config_path, "robot config YAML")->required();
+  app.add_option("log", options.positional_log, "a log to replay (as --log)");
+  app.add_option("--config,--robot-config", options.config_path,
+                 "robot config YAML (default with a log: carmen.yaml or breezyslam.yaml from "
+                 "--config-dir, by the log's format)");
+  app.add_option("--config-dir", options.config_dir,
+                 "folder of the default robot configs (default: config)");
+  app.add_option("--estimator", options.estimator, "odometry or ekf (overrides the config)")
+      ->check(CLI::IsMember({"odometry", "ekf"}));
+  app.add_option("--odom-noise", options.odom_noise,
+                 "DIST_FRACTION,DEG_PER_M: seeded noise added to the log's odometry poses "
+                 "(e.g. 0.1,2; overrides the config)");
+  app.add_option("--seed", options.seed, "seed of the odometry noise (overrides the config)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--domain", options.domain, "DDS domain id (overrides the config)")
       ->check(CLI::Range(0, 232));
   app.add_option(
@@ -103,19 +201,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(log_level));
   try {
-    RobotConfig config = mrslam::robot::loadRobotConfig(options.config_path);
-    if (options.domain >= 0) {
-      config.dds.domain_id = options.domain;
-    }
-    if (!options.log.empty()) {
-      config.source.path = options.log;
-      if (config.source.type == mrslam::robot::SourceType::kSimulator) {
-        config.source.type = mrslam::robot::SourceType::kLog;
-      }
-    }
-    if (options.speed >= 0.0) {
-      config.runner.speed = options.speed;
-    }
+    RobotConfig config = loadConfig(options);
     return runRobot(options, config);
   } catch (const std::exception& error) {
     spdlog::error("robot_agent: {}", error.what());

@@ -16,13 +16,15 @@ SourceSettings loadSource(const Config& section) {
                 : type == "log"        ? SourceType::kLog
                 : type == "breezyslam" ? SourceType::kBreezySlam
                                        : SourceType::kCarmen;
-  source.path = section.getPath("path", "");
-  if (source.type != SourceType::kSimulator && source.path.empty()) {
-    section.fail("path", "a log source needs the path of its log");
-  }
+  source.path = section.getPath("path", "");  // may be left to the command line (--log)
   source.malformed = section.getChoice("malformed", "skip", {"skip", "stop"}) == "stop"
                          ? drivers::MalformedPolicy::kStop
                          : drivers::MalformedPolicy::kSkip;
+  const std::vector<double> noise =
+      section.getDoubles("odometry_noise", {0.0, 0.0}, 2, {0.0, 100.0});
+  source.odometry_noise.distance_fraction = noise[0];
+  source.odometry_noise.deg_per_m = noise[1];
+  source.odometry_noise.seed = static_cast<std::uint64_t>(section.getInt("seed", 1, {0, 9.0e15}));
   return source;
 }
 
@@ -100,6 +102,8 @@ RobotConfig loadRobotConfig(const std::string& path) {
   robot.platform = loadPlatform(config.section("platform"));
   robot.mounting = loadMounting(config.section("laser"), config.section("imu"));
   robot.odometry_noise = loadOdometryNoise(config.section("odometry_noise"));
+  robot.estimator = loadEstimatorSettings(config.section("estimator"));
+  robot.estimator.ekf.odometry = robot.odometry_noise;
   robot.mapping = loadMapping(config.section("mapping"));
   loadPublish(config.section("publish"), robot);
   robot.dds = loadDdsSettings(config.section("dds"));
@@ -107,8 +111,13 @@ RobotConfig loadRobotConfig(const std::string& path) {
   return robot;
 }
 
-std::unique_ptr<drivers::SampleSource> openSource(const RobotConfig& config) {
+namespace {
+
+std::unique_ptr<drivers::SampleSource> openUnwrappedSource(const RobotConfig& config) {
   const SourceSettings& source = config.source;
+  if (source.type != SourceType::kSimulator && source.path.empty()) {
+    throw std::runtime_error("source.path: a log source needs the path of its log (--log)");
+  }
   switch (source.type) {
     case SourceType::kSimulator:
       return std::make_unique<drivers::Simulator>(config.simulator, config.platform,
@@ -131,10 +140,33 @@ std::unique_ptr<drivers::SampleSource> openSource(const RobotConfig& config) {
   throw std::logic_error("unknown source type");
 }
 
+}  // namespace
+
+std::unique_ptr<drivers::SampleSource> openSource(const RobotConfig& config) {
+  auto source = openUnwrappedSource(config);
+  if (config.source.odometry_noise.enabled()) {
+    return std::make_unique<drivers::OdometryNoiseSource>(std::move(source),
+                                                          config.source.odometry_noise);
+  }
+  return source;
+}
+
+std::unique_ptr<PoseEstimator> makeEstimator(const RobotConfig& config, EstimatorType type) {
+  if (type == EstimatorType::kOdometry) {
+    return std::make_unique<OdometryEstimator>(config.platform, config.odometry_noise);
+  }
+  EkfSettings ekf = config.estimator.ekf;
+  ekf.odometry = config.odometry_noise;
+  return std::make_unique<EkfEstimator>(config.platform, config.mounting, ekf);
+}
+
 std::unique_ptr<RobotPipeline> makePipeline(const RobotConfig& config) {
-  return std::make_unique<RobotPipeline>(
-      config.mapping, config.mounting,
-      std::make_unique<OdometryEstimator>(config.platform, config.odometry_noise));
+  return makePipeline(config, config.estimator.type);
+}
+
+std::unique_ptr<RobotPipeline> makePipeline(const RobotConfig& config, EstimatorType type) {
+  return std::make_unique<RobotPipeline>(config.mapping, config.mounting,
+                                         makeEstimator(config, type));
 }
 
 }  // namespace mrslam::robot

@@ -7,8 +7,10 @@
 
 #include "mrslam/common/dds_settings.hpp"
 #include "mrslam/common/platform.hpp"
+#include "mrslam/drivers/odometry_noise.hpp"
 #include "mrslam/drivers/sample_source.hpp"
 #include "mrslam/drivers/simulator.hpp"
+#include "mrslam/robot/estimator_config.hpp"
 #include "mrslam/robot/grid_mapper.hpp"
 #include "mrslam/robot/odometry_estimator.hpp"
 #include "mrslam/robot/robot_runner.hpp"
@@ -19,8 +21,12 @@ enum class SourceType { kSimulator, kLog, kBreezySlam, kCarmen };
 
 struct SourceSettings {
   SourceType type = SourceType::kSimulator;  ///< where the samples come from
-  std::string path;  ///< the log (log, breezyslam, carmen), relative to the config file
+  std::string path;  ///< the log (log, breezyslam, carmen), relative to the config file; may be
+                     ///< empty in the file and given on the command line
   drivers::MalformedPolicy malformed = drivers::MalformedPolicy::kSkip;  ///< malformed lines
+  /// Seeded noise added to the log's odometry poses (`odometry_noise: [f, deg_per_m]`, `seed`);
+  /// off by default. For logs whose odometry is perfect (the corrected CARMEN logs).
+  drivers::OdometryNoiseSettings odometry_noise;
 };
 
 struct RobotConfig {
@@ -29,7 +35,8 @@ struct RobotConfig {
   drivers::SimulatorSettings simulator;
   DiffDriveParams platform;
   SensorMounting mounting;
-  OdometryNoise odometry_noise;
+  OdometryNoise odometry_noise;  ///< odometry increments' noise (both estimators use it)
+  EstimatorSettings estimator;
   MappingSettings mapping;
   RunnerSettings runner;
   DdsSettings dds;
@@ -40,10 +47,16 @@ struct RobotConfig {
 /// Loads and validates a robot config; throws ConfigError (`file:line: key: what is wrong`).
 RobotConfig loadRobotConfig(const std::string& path);
 
-/// Opens the configured source. Throws std::runtime_error when it cannot be opened.
+/// Opens the configured source, wrapped in an OdometryNoiseSource when source.odometry_noise is
+/// on. Throws std::runtime_error when it cannot be opened.
 std::unique_ptr<drivers::SampleSource> openSource(const RobotConfig& config);
 
-/// The pipeline the config describes, with wheel odometry as its estimator.
+/// The estimator of `type` with the config's platform, mounting and settings.
+std::unique_ptr<PoseEstimator> makeEstimator(const RobotConfig& config, EstimatorType type);
+
+/// The pipeline the config describes, with config.estimator.type as its estimator.
 std::unique_ptr<RobotPipeline> makePipeline(const RobotConfig& config);
+/// The pipeline the config describes, with an estimator of `type`.
+std::unique_ptr<RobotPipeline> makePipeline(const RobotConfig& config, EstimatorType type);
 
 }  // namespace mrslam::robot
