@@ -1,0 +1,144 @@
+#pragma once
+// SeedMerger: the seed paper's map merging pipeline (DESIGN.md "The merge", section II of the
+// seed paper), with no prior on the relative pose. Blocks 1-9 are functions of their own headers;
+// the steps marked (ours) are where the description is silent or not reliable enough alone.
+//
+// 1. Each map: Gaussian + Canny edges of the occupied cells and middle-point edge smoothing with
+//    dt (blocks 1-2, edges.hpp); the Radon image of the edges and its angular profile (block 7,
+//    radon.hpp).
+// 2. Each map: up to `segment_trials` random (seeded) edge cells start a segment of n points
+//    (block 3, segments.hpp); the segments that pass the histogram verification (hd, ωc; block 4,
+//    histograms.hpp) are kept, at most `max_segments`, duplicates dropped.
+// 3. Every pair of kept segments (one per map) gets the histogram score; the best
+//    `correlated_pairs` also get the D/Δ correlation, and the best `pose_trials` pairs by the
+//    combined score are tried (block 5, correlation.hpp).
+// 4. Each tried pair gives two approximate poses (line angles modulo π, centroids of the matched
+//    spans; block 6, approximate_pose.hpp); the Radon peak near each angle tunes the rotation and
+//    the translation is recomputed from the centroids at the tuned angle (block 7).
+// 5. Coarse score (ours): the share of `from`'s occupied cells (`coarse_samples` of them) landing
+//    within `coarse_radius_cells` of an occupied cell of `to`, minus the share landing on free
+//    cells farther away. It tolerates the few cells of error of an approximate pose and ranks
+//    the hypotheses; the best `refined_hypotheses` distinct ones go on.
+// 6. Translation tuning (block 8, similarity.hpp): agr - dis over ±δ, every other shift and then
+//    ±1 around the best, on an even sample of `search_occupied_samples` occupied and
+//    `search_free_samples` free cells of `from` (ours: so that walls, not open floor, decide).
+//    Candidates whose walls meet walls (structure agreement ≥ min_structure_agreement on the
+//    sample) rank first, then by agr - dis.
+// 7. Rotation polish (ours): rotations within ±`rotation_polish` of the best candidate in steps of
+//    `rotation_polish_step` and then half that, each with ±1 cell, keep the best agr - dis; at the
+//    polished angle block 8 runs again over every shift of ±δ with the merged entropy, and ±1 cell
+//    on a sample four times denser.
+// 8. Verification (block 9): V = agr / (agr + dis) over all known cells and the merged map's
+//    entropy. Accepted only when V ≥ `min_verification_v`, the overlap has ≥ `min_overlap_cells`
+//    known cells, the entropy minimum over the ±δ shifts lies within `entropy_agreement_cells` of
+//    the best agr - dis (DESIGN's "best V": V alone favours the smallest overlaps), and (ours)
+//    the structure agreement in both directions is ≥ `min_structure_agreement` (V is dominated by
+//    free cells, so a wrong pose in open space scores high) and the best shift ≥ 3 cells from the
+//    best scores at most `max_translation_ambiguity` of it (a corridor seen along its length
+//    fixes no translation), and no other candidate that meets the structure bar but puts `from`
+//    elsewhere scores more than `max_rival_share` of the best (a symmetric junction).
+// 9. Fallback (ours, `radon_fallback`): when step 8 refuses, the `fallback_rotations` strongest
+//    peaks of the Radon profile correlation, each with its other half turn, are searched over all
+//    translations at once by a coarse DFT correlation (seed_fallback.cpp); its
+//    `fallback_translations` best peaks per rotation join the candidates of steps 6-8.
+// Randomness comes from `seed` only: one merge of the same maps always gives the same answer.
+// Choices where the description is silent: D is the distance to the segment's total-least-
+// squares line and Δ the turning angle over chords of k points; the arc histogram is that of Δ;
+// hd bounds the spread of D; segments are resampled to one cell of arc length per point; the
+// entropy is that of the known cells, probabilities clamped to [1-c, c], fused by log-odds.
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mrslam/common/config.hpp"
+#include "mrslam/fusion/merge/correlation.hpp"
+#include "mrslam/fusion/merge/edges.hpp"
+#include "mrslam/fusion/merge/histograms.hpp"
+#include "mrslam/fusion/merge/map_merger.hpp"
+#include "mrslam/fusion/merge/radon.hpp"
+#include "mrslam/fusion/merge/segments.hpp"
+#include "mrslam/fusion/merge/similarity.hpp"
+
+namespace mrslam::fusion {
+
+namespace seed {
+struct Candidate;
+struct Refined;
+struct SearchInputs;
+}  // namespace seed
+
+/// Every setting of the seed merger; block settings are handed to the blocks as they are.
+struct SeedMergerSettings {
+  EdgeSettings edges;                        ///< blocks 1-2 (dt)
+  SegmentSettings segments;                  ///< block 3 (n)
+  SegmentVerificationSettings verification;  ///< block 4 (hd, ωc)
+  CorrelationSettings correlation;           ///< block 5
+  RadonSettings radon;                       ///< block 7
+  SimilaritySettings similarity;             ///< blocks 8-9 (cell classes, entropy)
+  int segment_trials = 200;                  ///< random segment starts tried per map
+  int max_segments = 80;                     ///< verified segments kept per map
+  int correlated_pairs = 500;        ///< pairs (best histogram scores) given D/Δ correlation
+  int pose_trials = 60;              ///< best pairs whose approximate poses are tried
+  int coarse_radius_cells = 2;       ///< coarse score: tolerance (cells) around walls
+  int coarse_samples = 1500;         ///< coarse score: occupied cells of `from` sampled
+  int refined_hypotheses = 3;        ///< hypotheses given the exhaustive search
+  int translation_window_delta = 6;  ///< δ: translation search ±δ cells
+  double rotation_polish_rad = 1.5 * M_PI / 180.0;       ///< polish: rotations tried ± this
+  double rotation_polish_step_rad = 0.5 * M_PI / 180.0;  ///< polish: first step (then half)
+  int search_occupied_samples = 2500;       ///< ±δ search: occupied cells of `from` sampled
+  int search_free_samples = 2500;           ///< ±δ search: free cells of `from` sampled
+  double min_verification_v = 0.9;          ///< V threshold: least agr / (agr + dis)
+  long long min_overlap_cells = 1500;       ///< least known cells in the overlap (agr + dis)
+  double min_structure_agreement = 0.85;    ///< least share of walls landing on walls
+  double entropy_agreement_cells = 1.5;     ///< largest gap best-similarity ↔ least-entropy
+  double max_translation_ambiguity = 0.95;  ///< largest runner-up / best agr - dis in ±δ
+  double max_rival_share = 0.93;            ///< largest agr - dis of a rival transform / best
+  bool radon_fallback = true;               ///< try global Radon rotations when segments fail
+  int fallback_rotations = 4;               ///< fallback: Radon peaks tried (× 2 half turns)
+  int fallback_translations = 4;            ///< fallback: correlation peaks per rotation
+  std::uint32_t seed = 1;                   ///< seed of the random segment starts
+};
+
+/// Reads a `seed_merger` config section (every key optional, defaults above); angles in
+/// degrees in the file (`max_turn_omega_c_deg`, `rotation_window_deg`, `radon_step_deg`).
+SeedMergerSettings loadSeedMergerSettings(const Config& section);
+
+/// Time spent in each block by the last merge.
+struct SeedMergeTimings {
+  using Duration = std::chrono::duration<double, std::milli>;
+  Duration edges{};         ///< blocks 1-2, both maps
+  Duration radon{};         ///< Radon images and profile correlation
+  Duration segments{};      ///< blocks 3-4, both maps
+  Duration correlation{};   ///< block 5
+  Duration poses{};         ///< blocks 6-7 and the coarse score
+  Duration translation{};   ///< block 8
+  Duration verification{};  ///< block 9
+  Duration fallback{};      ///< the Radon fallback, when it ran
+};
+
+class SeedMerger : public MapMerger {
+ public:
+  explicit SeedMerger(const SeedMergerSettings& settings = {});
+  MergeResult merge(const GridMap& from, const GridMap& to) override;
+  std::string name() const override { return "seed"; }
+  const SeedMergeTimings& lastTimings() const { return timings_; }
+
+ private:
+  /// Block 8's last steps and block 9's figures for the first candidate.
+  seed::Refined refineBest(const std::vector<seed::Candidate>& candidates,
+                           const seed::SearchInputs& inputs) const;
+  /// Block 9: the result of a refined transform.
+  void judge(const seed::Refined& refined, const GridMap& from, const GridMap& to,
+             MergeResult& result) const;
+  /// Why a refined transform is refused; empty when it is accepted.
+  std::string refusal(const seed::Refined& refined) const;
+  seed::SearchInputs searchInputs(const GridMap& from, const GridMap& to) const;
+
+  const SeedMergerSettings settings_;
+  const ComparisonTables tables_;
+  SeedMergeTimings timings_;
+};
+
+}  // namespace mrslam::fusion

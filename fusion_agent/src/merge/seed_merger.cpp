@@ -1,0 +1,192 @@
+#include "mrslam/fusion/merge/seed_merger.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "seed_stages.hpp"
+
+namespace mrslam::fusion {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kFineSampleFactor = 4;  // the ±1 cell steps sample 4 times as densely as ±δ
+
+// Adds the time since `start` to `total` and restarts the clock.
+void lap(Clock::time_point& start, SeedMergeTimings::Duration& total) {
+  const Clock::time_point now = Clock::now();
+  total += now - start;
+  start = now;
+}
+
+std::string describe(double value, int precision = 3) {
+  std::ostringstream text;
+  text.precision(precision);
+  text << value;
+  return text.str();
+}
+
+// Why two maps cannot be merged at all, or empty.
+std::string inputRefusal(const GridMap& from, const GridMap& to) {
+  if (!from.isValid() || !to.isValid() || from.cells.empty() || to.cells.empty()) {
+    return "a map is empty or invalid";
+  }
+  if (std::abs(from.geometry.resolution_m - to.geometry.resolution_m) >
+      1e-9 * to.geometry.resolution_m) {
+    return "the maps differ in resolution";
+  }
+  return "";
+}
+
+bool sameTransform(const GridTransform& a, const GridTransform& b) {
+  return a.theta_rad == b.theta_rad && a.t_cells == b.t_cells;
+}
+
+}  // namespace
+
+SeedMerger::SeedMerger(const SeedMergerSettings& settings)
+    : settings_(settings), tables_(settings.similarity) {}
+
+seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& to) const {
+  seed::SearchInputs inputs;
+  inputs.all_samples = knownCells(from, tables_);
+  inputs.coarse_samples =
+      sampleKnownCells(inputs.all_samples, tables_, settings_.search_occupied_samples,
+                       settings_.search_free_samples);
+  inputs.fine_samples = sampleKnownCells(inputs.all_samples, tables_,
+                                         kFineSampleFactor * settings_.search_occupied_samples,
+                                         kFineSampleFactor * settings_.search_free_samples);
+  for (const CellSample& sample : inputs.all_samples) {
+    inputs.pivot_from += Eigen::Vector2d(sample.x, sample.y);
+  }
+  inputs.pivot_from /= std::max<double>(1.0, static_cast<double>(inputs.all_samples.size()));
+  inputs.to = codeImage(to, settings_.translation_window_delta + 2, tables_);
+  inputs.from = codeImage(from, 1, tables_);
+  for (const CellSample& cell : knownCells(to, tables_)) {
+    if (tables_.isOccupied(cell.code)) {
+      inputs.occupied_to.push_back(cell);
+    }
+  }
+  return inputs;
+}
+
+MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
+  timings_ = {};
+  MergeResult result;
+  result.method = name();
+  result.reason = inputRefusal(from, to);
+  if (!result.reason.empty()) {
+    return result;
+  }
+  Clock::time_point clock = Clock::now();
+  seed::PreparedMap prepared_from;
+  seed::PreparedMap prepared_to;
+  seed::prepareEdges(from, settings_, prepared_from);  // blocks 1-2
+  seed::prepareEdges(to, settings_, prepared_to);
+  lap(clock, timings_.edges);
+
+  seed::prepareRadon(settings_, prepared_from);  // blocks 7.1-7.2
+  seed::prepareRadon(settings_, prepared_to);
+  const std::vector<double> radon_correlation =
+      spectrumCorrelation(prepared_from.radon_profile, prepared_to.radon_profile);
+  lap(clock, timings_.radon);
+
+  std::mt19937 random(settings_.seed);
+  seed::sampleSegments(settings_, random, prepared_from);  // blocks 3-4
+  seed::sampleSegments(settings_, random, prepared_to);
+  lap(clock, timings_.segments);
+
+  const std::vector<seed::PairCandidate> pairs =
+      seed::rankPairs(prepared_from, prepared_to, settings_);  // block 5
+  result.trials = static_cast<int>(pairs.size());
+  lap(clock, timings_.correlation);
+
+  const seed::CoarseScorer scorer(prepared_from, to, settings_);
+  const std::vector<seed::Hypothesis> hypotheses = seed::poseHypotheses(
+      pairs, prepared_from, prepared_to, radon_correlation, scorer, settings_);  // blocks 6-7
+  lap(clock, timings_.poses);
+
+  const seed::SearchInputs inputs = searchInputs(from, to);  // block 8
+  std::vector<seed::Candidate> candidates =
+      seed::searchCandidates(hypotheses, inputs, tables_, settings_);
+  seed::Refined refined = refineBest(candidates, inputs);
+  lap(clock, timings_.translation);
+
+  if ((candidates.empty() || !refusal(refined).empty()) && settings_.radon_fallback) {
+    const std::vector<seed::Hypothesis> fallback = seed::fallbackHypotheses(
+        prepared_from, prepared_to, to, radon_correlation, scorer, settings_);
+    result.trials += static_cast<int>(fallback.size());
+    const std::vector<seed::Candidate> tried = candidates;
+    candidates = seed::mergeCandidates(
+        candidates, seed::searchCandidates(fallback, inputs, tables_, settings_), settings_);
+    if (tried.empty() || (!candidates.empty() &&
+                          !sameTransform(candidates.front().T_to_from, tried.front().T_to_from))) {
+      refined = refineBest(candidates, inputs);
+    }
+    refined.rival_share = seed::rivalShare(candidates, inputs, settings_);
+    lap(clock, timings_.fallback);
+  }
+
+  if (candidates.empty()) {
+    result.reason = "no pose hypothesis: " + std::to_string(prepared_from.segments.size()) +
+                    " and " + std::to_string(prepared_to.segments.size()) + " verified segments";
+    return result;
+  }
+  judge(refined, from, to, result);  // block 9
+  lap(clock, timings_.verification);
+  return result;
+}
+
+seed::Refined SeedMerger::refineBest(const std::vector<seed::Candidate>& candidates,
+                                     const seed::SearchInputs& inputs) const {
+  seed::Refined refined;
+  if (!candidates.empty()) {
+    refined = seed::finalize(candidates.front().T_to_from, inputs, tables_, settings_);
+    refined.rival_share = seed::rivalShare(candidates, inputs, settings_);
+  }
+  return refined;
+}
+
+void SeedMerger::judge(const seed::Refined& refined, const GridMap& from, const GridMap& to,
+                       MergeResult& result) const {
+  result.T_to_from = refined.T_to_from;
+  result.verification = verificationIndex(refined.full);
+  result.entropy = mergedEntropy(mapEntropy(from, tables_), mapEntropy(to, tables_), refined.full);
+  result.reason = refusal(refined);
+  result.accepted = result.reason.empty();
+}
+
+std::string SeedMerger::refusal(const seed::Refined& refined) const {
+  const long long overlap = refined.full.agreement + refined.full.disagreement;
+  const double verification = verificationIndex(refined.full);
+  if (overlap < settings_.min_overlap_cells) {
+    return "overlap of " + std::to_string(overlap) + " known cells is below " +
+           std::to_string(settings_.min_overlap_cells);
+  }
+  if (verification < settings_.min_verification_v) {
+    return "verification index " + describe(verification) + " is below " +
+           describe(settings_.min_verification_v);
+  }
+  if (refined.structure < settings_.min_structure_agreement) {
+    return "only " + describe(refined.structure) + " of the overlapping walls meet walls (below " +
+           describe(settings_.min_structure_agreement) + ")";
+  }
+  if (refined.entropy_gap_cells > settings_.entropy_agreement_cells) {
+    return "the entropy minimum lies " + describe(refined.entropy_gap_cells) +
+           " cells from the best similarity";
+  }
+  if (refined.translation_ambiguity > settings_.max_translation_ambiguity) {
+    return "the overlap does not fix the translation: a shift of " +
+           std::to_string(kRunnerUpCells) + " cells or more scores " +
+           describe(refined.translation_ambiguity) + " of the best";
+  }
+  if (refined.rival_share > settings_.max_rival_share) {
+    return "another transform explains the overlap almost as well (" +
+           describe(refined.rival_share) + " of the best)";
+  }
+  return "";
+}
+
+}  // namespace mrslam::fusion

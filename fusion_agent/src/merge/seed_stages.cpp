@@ -1,0 +1,327 @@
+#include "seed_stages.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "mrslam/fusion/merge/approximate_pose.hpp"
+
+namespace mrslam::fusion::seed {
+
+namespace {
+
+constexpr double kFollowSlack = 1.15;  // smoothing shortens a cell chain: follow a bit farther
+constexpr double kDistinctCells = 3.0;
+constexpr double kDistinctRad = 2.0 * M_PI / 180.0;
+
+struct ScoredPair {
+  double score;
+  int from;
+  int to;
+};
+
+// Turning about the centre of `from`'s known cells keeps the overlap in place.
+Eigen::Vector2d translationAfterTurn(const GridTransform& T_to_from, double theta,
+                                     const SearchInputs& inputs) {
+  const Eigen::Vector2d pivot = inputs.pivot_from;
+  return translationFromCentroids(theta, pivot, T_to_from.apply(pivot));
+}
+
+bool sameEnds(const Segment& a, const Segment& b) {
+  constexpr double kSameCells = 1.5;
+  const auto near = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+    return (p - q).norm() < kSameCells;
+  };
+  return (near(a.points.front(), b.points.front()) && near(a.points.back(), b.points.back())) ||
+         (near(a.points.front(), b.points.back()) && near(a.points.back(), b.points.front()));
+}
+
+}  // namespace
+
+void prepareEdges(const GridMap& map, const SeedMergerSettings& settings, PreparedMap& prepared) {
+  prepared.occupied = occupiedImage(map, settings.edges.occupied_threshold);
+  prepared.edges = smoothEdges(detectEdges(prepared.occupied, settings.edges),
+                               settings.edges.edge_merge_distance_dt);
+  prepared.edge_cells = nonZeroCells(prepared.edges);
+}
+
+void prepareRadon(const SeedMergerSettings& settings, PreparedMap& prepared) {
+  prepared.radon =
+      radonTransform(prepared.edge_cells, prepared.edges.size(), settings.radon.angle_step_rad);
+  prepared.radon_profile = radonSpectrum(prepared.radon, settings.radon.profile_highpass_rad);
+}
+
+void sampleSegments(const SeedMergerSettings& settings, std::mt19937& random,
+                    PreparedMap& prepared) {
+  prepared.segments.clear();
+  prepared.reversed.clear();
+  prepared.histograms.clear();
+  if (prepared.edge_cells.empty()) {
+    return;
+  }
+  EdgeFollower follower(prepared.edges, settings.segments.gap_jump_cells);
+  std::uniform_int_distribution<std::size_t> pick(0, prepared.edge_cells.size() - 1);
+  const double length = kFollowSlack * settings.segments.segment_points_n + 4.0;
+  for (int trial = 0; trial < settings.segment_trials &&
+                      static_cast<int>(prepared.segments.size()) < settings.max_segments;
+       ++trial) {
+    const std::optional<Segment> segment =
+        makeSegment(follower.follow(prepared.edge_cells[pick(random)], length), settings.segments);
+    if (!segment) {
+      continue;
+    }
+    if (std::any_of(prepared.segments.begin(), prepared.segments.end(),
+                    [&](const Segment& kept) { return sameEnds(kept, *segment); })) {
+      continue;  // a short edge gives the same segment from every start on it
+    }
+    SegmentHistograms histograms = segmentHistograms(*segment, settings.verification);
+    if (verifySegment(*segment, histograms, settings.verification) == SegmentVerdict::kAccepted) {
+      prepared.segments.push_back(*segment);
+      prepared.reversed.push_back(reversedSegment(*segment));
+      prepared.histograms.push_back(std::move(histograms));
+    }
+  }
+}
+
+std::vector<PairCandidate> rankPairs(const PreparedMap& from, const PreparedMap& to,
+                                     const SeedMergerSettings& settings) {
+  std::vector<ScoredPair> scored;
+  for (std::size_t i = 0; i < from.segments.size(); ++i) {
+    for (std::size_t j = 0; j < to.segments.size(); ++j) {
+      const double score = std::max(histogramScore(from.histograms[i], to.histograms[j], false),
+                                    histogramScore(from.histograms[i], to.histograms[j], true));
+      scored.push_back({score, static_cast<int>(i), static_cast<int>(j)});
+    }
+  }
+  const auto by_score = [](const ScoredPair& a, const ScoredPair& b) { return a.score > b.score; };
+  if (static_cast<int>(scored.size()) > settings.correlated_pairs) {
+    std::nth_element(scored.begin(), scored.begin() + settings.correlated_pairs, scored.end(),
+                     by_score);
+    scored.resize(static_cast<std::size_t>(settings.correlated_pairs));
+  }
+  std::vector<PairCandidate> pairs;
+  for (const ScoredPair& pair : scored) {
+    const auto i = static_cast<std::size_t>(pair.from);
+    const auto j = static_cast<std::size_t>(pair.to);
+    pairs.push_back({pair.from, pair.to,
+                     matchSegments(from.segments[i], from.histograms[i], to.segments[j],
+                                   to.reversed[j], to.histograms[j], settings.correlation)});
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const PairCandidate& a, const PairCandidate& b) {
+    return a.match.score > b.match.score;
+  });
+  if (static_cast<int>(pairs.size()) > settings.pose_trials) {
+    pairs.resize(static_cast<std::size_t>(settings.pose_trials));
+  }
+  return pairs;
+}
+
+CoarseScorer::CoarseScorer(const PreparedMap& from, const GridMap& to,
+                           const SeedMergerSettings& settings) {
+  const std::vector<cv::Point> occupied = nonZeroCells(from.occupied);
+  const std::size_t step =
+      std::max<std::size_t>(1, occupied.size() / std::max(1, settings.coarse_samples));
+  for (std::size_t i = 0; i < occupied.size(); i += step) {
+    samples_.push_back(occupied[i]);
+  }
+  const int radius = settings.coarse_radius_cells;
+  cv::Mat near;
+  cv::dilate(
+      occupiedImage(to, settings.similarity.occupied_threshold), near,
+      cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1)));
+  classes_ = cv::Mat(near.size(), CV_8U, cv::Scalar(0));
+  for (int y = 0; y < near.rows; ++y) {
+    for (int x = 0; x < near.cols; ++x) {
+      const std::int8_t value = to.at(x, y);
+      if (near.at<std::uint8_t>(y, x) != 0) {
+        classes_.at<std::uint8_t>(y, x) = 2;
+      } else if (value >= 0 && value <= settings.similarity.free_threshold) {
+        classes_.at<std::uint8_t>(y, x) = 1;
+      }
+    }
+  }
+}
+
+double CoarseScorer::score(const GridTransform& T_to_from) const {
+  if (samples_.empty()) {
+    return 0.0;
+  }
+  const double c = std::cos(T_to_from.theta_rad);
+  const double s = std::sin(T_to_from.theta_rad);
+  int balance = 0;
+  for (const cv::Point& p : samples_) {
+    const int x = static_cast<int>(std::floor(c * p.x - s * p.y + T_to_from.t_cells.x() + 0.5));
+    const int y = static_cast<int>(std::floor(s * p.x + c * p.y + T_to_from.t_cells.y() + 0.5));
+    if (x < 0 || y < 0 || x >= classes_.cols || y >= classes_.rows) {
+      continue;
+    }
+    const std::uint8_t cell = classes_.at<std::uint8_t>(y, x);
+    balance += cell == 2 ? 1 : (cell == 1 ? -1 : 0);
+  }
+  return static_cast<double>(balance) / static_cast<double>(samples_.size());
+}
+
+std::vector<Hypothesis> poseHypotheses(const std::vector<PairCandidate>& pairs,
+                                       const PreparedMap& from, const PreparedMap& to,
+                                       const std::vector<double>& radon_correlation,
+                                       const CoarseScorer& scorer,
+                                       const SeedMergerSettings& settings) {
+  std::vector<Hypothesis> hypotheses;
+  for (const PairCandidate& pair : pairs) {
+    const auto [line_from, line_to] =
+        matchedLines(from.segments[static_cast<std::size_t>(pair.from)],
+                     to.segments[static_cast<std::size_t>(pair.to)], pair.match);
+    for (const GridTransform& approximate : posesFromLines(line_from, line_to)) {
+      const std::optional<double> theta = tuneRotation(radon_correlation, approximate.theta_rad,
+                                                       settings.radon.rotation_window_rad);
+      if (!theta) {
+        continue;
+      }
+      Hypothesis hypothesis;
+      hypothesis.T_to_from.theta_rad = *theta;
+      hypothesis.T_to_from.t_cells =
+          translationFromCentroids(*theta, line_from.centroid, line_to.centroid);
+      hypothesis.coarse_score = scorer.score(hypothesis.T_to_from);
+      hypotheses.push_back(hypothesis);
+    }
+  }
+  return hypotheses;
+}
+
+std::vector<Hypothesis> bestDistinct(std::vector<Hypothesis> hypotheses, int count) {
+  std::sort(hypotheses.begin(), hypotheses.end(), [](const Hypothesis& a, const Hypothesis& b) {
+    return a.coarse_score > b.coarse_score;
+  });
+  std::vector<Hypothesis> kept;
+  for (const Hypothesis& candidate : hypotheses) {
+    if (static_cast<int>(kept.size()) >= count) {
+      break;
+    }
+    const bool repeated = std::any_of(kept.begin(), kept.end(), [&](const Hypothesis& other) {
+      return std::abs(std::remainder(candidate.T_to_from.theta_rad - other.T_to_from.theta_rad,
+                                     2.0 * M_PI)) < kDistinctRad &&
+             (candidate.T_to_from.t_cells - other.T_to_from.t_cells).norm() < kDistinctCells;
+    });
+    if (!repeated) {
+      kept.push_back(candidate);
+    }
+  }
+  return kept;
+}
+
+TranslationSearch searchAround(const GridTransform& T_to_from, const SearchInputs& inputs,
+                               const ComparisonTables& tables, const SeedMergerSettings& settings) {
+  // Every other shift of ±δ first, then every shift ±1 around the best of those.
+  const TranslationSearch coarse =
+      searchTranslation(inputs.coarse_samples, inputs.to, T_to_from,
+                        settings.translation_window_delta, tables, false, 2);
+  return searchTranslation(inputs.coarse_samples, inputs.to, coarse.best_similarity, 1, tables,
+                           false);
+}
+
+namespace {
+
+void orderCandidates(std::vector<Candidate>& candidates, const SeedMergerSettings& settings) {
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [&](const Candidate& a, const Candidate& b) {
+                     const bool a_meets = a.structure >= settings.min_structure_agreement;
+                     const bool b_meets = b.structure >= settings.min_structure_agreement;
+                     return a_meets != b_meets ? a_meets : a.similarity > b.similarity;
+                   });
+}
+
+GridTransform polishRotation(const GridTransform& T_to_from, const SearchInputs& inputs,
+                             const ComparisonTables& tables, const SeedMergerSettings& settings) {
+  GridTransform best = T_to_from;
+  long long best_similarity =
+      searchTranslation(inputs.coarse_samples, inputs.to, best, 1, tables, false)
+          .at_best_similarity.similarity();
+  double step = settings.rotation_polish_step_rad;
+  for (int level = 0; level < 2; ++level, step *= 0.5) {  // coarse steps, then half steps
+    const GridTransform centre = best;
+    const int reach = level == 0 ? static_cast<int>(settings.rotation_polish_rad / step) : 1;
+    for (int i = -reach; i <= reach; ++i) {
+      if (i == 0) {
+        continue;
+      }
+      GridTransform turned = centre;
+      turned.theta_rad = centre.theta_rad + i * step;
+      turned.t_cells = translationAfterTurn(centre, turned.theta_rad, inputs);
+      const TranslationSearch search =
+          searchTranslation(inputs.coarse_samples, inputs.to, turned, 1, tables, false);
+      if (search.at_best_similarity.similarity() > best_similarity) {
+        best_similarity = search.at_best_similarity.similarity();
+        best = search.best_similarity;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypotheses,
+                                        const SearchInputs& inputs, const ComparisonTables& tables,
+                                        const SeedMergerSettings& settings) {
+  std::vector<Candidate> candidates;
+  for (const Hypothesis& hypothesis : bestDistinct(hypotheses, settings.refined_hypotheses)) {
+    const TranslationSearch search = searchAround(hypothesis.T_to_from, inputs, tables, settings);
+    candidates.push_back(
+        {search.best_similarity, search.at_best_similarity.similarity(),
+         structureAgreement(inputs.coarse_samples, inputs.to, search.best_similarity, tables)
+             .index()});
+  }
+  orderCandidates(candidates, settings);
+  return candidates;
+}
+
+double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
+                  const SeedMergerSettings& settings) {
+  constexpr double kRivalCells = 10.0;
+  if (candidates.empty() || candidates.front().similarity <= 0) {
+    return 0.0;
+  }
+  const Candidate& chosen = candidates.front();
+  const Eigen::Vector2d centre = chosen.T_to_from.apply(inputs.pivot_from);
+  for (std::size_t i = 1; i < candidates.size(); ++i) {
+    const Candidate& other = candidates[i];
+    if (other.structure >= settings.min_structure_agreement &&
+        (other.T_to_from.apply(inputs.pivot_from) - centre).norm() > kRivalCells) {
+      return static_cast<double>(other.similarity) / static_cast<double>(chosen.similarity);
+    }
+  }
+  return 0.0;
+}
+
+std::vector<Candidate> mergeCandidates(std::vector<Candidate> a, const std::vector<Candidate>& b,
+                                       const SeedMergerSettings& settings) {
+  a.insert(a.end(), b.begin(), b.end());
+  orderCandidates(a, settings);
+  return a;
+}
+
+Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
+                 const ComparisonTables& tables, const SeedMergerSettings& settings) {
+  const GridTransform polished = polishRotation(T_to_from, inputs, tables, settings);
+  const TranslationSearch coarse = searchTranslation(
+      inputs.coarse_samples, inputs.to, polished, settings.translation_window_delta, tables, true);
+  const TranslationSearch fine_similarity =
+      searchTranslation(inputs.fine_samples, inputs.to, coarse.best_similarity, 1, tables, false);
+  const TranslationSearch fine_entropy =
+      searchTranslation(inputs.fine_samples, inputs.to, coarse.least_entropy, 1, tables);
+  Refined refined;
+  refined.T_to_from = fine_similarity.best_similarity;
+  refined.full = compareAt(inputs.all_samples, inputs.to, refined.T_to_from, tables);
+  refined.structure = std::min(
+      structureAgreement(inputs.all_samples, inputs.to, refined.T_to_from, tables).index(),
+      structureAgreement(inputs.occupied_to, inputs.from, refined.T_to_from.inverse(), tables)
+          .index());
+  refined.least_entropy = fine_entropy.least_entropy;
+  refined.entropy_gap_cells = (refined.T_to_from.t_cells - refined.least_entropy.t_cells).norm();
+  const long long best = coarse.at_best_similarity.similarity();
+  refined.translation_ambiguity =
+      best > 0 ? static_cast<double>(coarse.runner_up_similarity) / static_cast<double>(best) : 1.0;
+  return refined;
+}
+
+}  // namespace mrslam::fusion::seed

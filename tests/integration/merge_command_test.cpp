@@ -1,0 +1,185 @@
+// mrslam_merge as a separate process: JSON output, the affine in the files' pixel coordinates,
+// the merged picture and the exit code for unreadable inputs.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <set>
+#include <sstream>
+
+#include "agent_processes.hpp"
+#include "mrslam/common/map_io.hpp"
+#include "mrslam/common/map_loaders.hpp"
+#include "mrslam/fusion/merge/merge_cases.hpp"
+#include "mrslam/fusion/merge/merger_registry.hpp"
+
+namespace mrslam::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct CommandRun {
+  int exit_code = -1;
+  std::string output;  ///< standard output and error together
+};
+
+CommandRun runMerge(const std::vector<std::string>& arguments,
+                    const std::filesystem::path& folder) {
+  const std::string log = (folder / "merge.log").string();
+  auto process = startAgent("tools/mrslam_merge", arguments, log);
+  CommandRun run;
+  run.exit_code = finish(*process, 120.0);
+  std::ifstream in(log);
+  run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return run;
+}
+
+/// The last line of the output that holds a JSON object.
+nlohmann::json lastJsonLine(const std::string& output) {
+  std::istringstream lines(output);
+  std::string json_line;
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.empty() && line.front() == '{') {
+      json_line = line;
+    }
+  }
+  return nlohmann::json::parse(json_line);
+}
+
+fusion::CropSpec specOf(int x, int y, int size, double theta_rad, int pad) {
+  fusion::CropSpec spec;
+  spec.corner = Eigen::Vector2i(x, y);
+  spec.size = size;
+  spec.theta_rad = theta_rad;
+  spec.pad_low = Eigen::Vector2i(pad, 3 * pad);
+  spec.pad_high = Eigen::Vector2i(2 * pad, pad);
+  return spec;
+}
+
+/// Pixel (column, row from the top) of a crop where source cell `s` lands.
+Eigen::Vector2d pixelOf(const fusion::Crop& crop, const Eigen::Vector2d& s) {
+  const Eigen::Vector2d cell = crop.T_crop_source.apply(s);
+  return Eigen::Vector2d(cell.x(), crop.map.geometry.height - 1.0 - cell.y());
+}
+
+TEST(MergeCommandTest, JsonAffineMapsPixelsOfOneFileOntoTheOther) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-intel.txt");
+  const auto folder = scratchFolder("affine");
+  const GridMap intel = loadMapFile(sharedDataPath("maps/carpin-intel.txt"));
+  const fusion::CropSpec spec_0 = specOf(150, 200, 320, 20.0 * kPi / 180.0, 10);
+  const fusion::CropSpec spec_1 = specOf(220, 240, 320, -50.0 * kPi / 180.0, 30);
+  const fusion::Crop crop_0 = fusion::cutCrop(intel, spec_0);
+  const fusion::Crop crop_1 = fusion::cutCrop(intel, spec_1);
+  // Map 0 as a map_server YAML (+ PGM), map 1 as a bare PGM.
+  saveMapYaml(crop_0.map, (folder / "zero.yaml").string());
+  saveMapYaml(crop_1.map, (folder / "one.yaml").string());
+  const CommandRun run = runMerge({(folder / "zero.yaml").string(), (folder / "one.pgm").string(),
+                                   "--method", "feature", "--json"},
+                                  folder);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json json = lastJsonLine(run.output);
+  ASSERT_EQ(json["pairs"].size(), 1u) << json.dump();
+  const nlohmann::json& pair = json["pairs"][0];
+  EXPECT_EQ(pair["from"], 1);
+  EXPECT_EQ(pair["to"], 0);
+  ASSERT_TRUE(pair["accepted"].get<bool>()) << pair.dump();
+  EXPECT_EQ(pair["method"], "feature");
+  EXPECT_GT(pair["verification"].get<double>(), 0.9);
+  EXPECT_GE(pair["time_ms"].get<double>(), 0.0);
+  const auto affine = pair["affine"].get<std::vector<std::vector<double>>>();
+  ASSERT_EQ(affine.size(), 2u);
+  // Source cells spread over the shared part land at the same place through the affine.
+  for (const Eigen::Vector2d& source :
+       {Eigen::Vector2d(300, 330), Eigen::Vector2d(240, 420), Eigen::Vector2d(420, 300)}) {
+    const Eigen::Vector2d p1 = pixelOf(crop_1, source);
+    const Eigen::Vector2d expected = pixelOf(crop_0, source);
+    const Eigen::Vector2d mapped(affine[0][0] * p1.x() + affine[0][1] * p1.y() + affine[0][2],
+                                 affine[1][0] * p1.x() + affine[1][1] * p1.y() + affine[1][2]);
+    EXPECT_LT((mapped - expected).norm(), 2.0)
+        << source.transpose() << " → " << mapped.transpose() << " vs " << expected.transpose();
+  }
+  // The turn of file 1's pixels onto file 0's: +70° in the grid is −70° in the pictures.
+  EXPECT_NEAR(std::atan2(affine[1][0], affine[0][0]), -70.0 * kPi / 180.0, 1.0 * kPi / 180.0);
+}
+
+TEST(MergeCommandTest, WritesTheMergedPictureAndASummaryWithoutJson) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
+  const auto folder = scratchFolder("picture");
+  const std::string out = (folder / "merged.png").string();
+  const CommandRun run =
+      runMerge({sharedDataPath("maps/carpin-robot0_cast.txt"),
+                sharedDataPath("maps/carpin-robot1_cast.txt"), "--method", "feature", "--out", out},
+               folder);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, ::testing::HasSubstr("map 1"));
+  const cv::Mat picture = cv::imread(out, cv::IMREAD_COLOR);
+  ASSERT_FALSE(picture.empty());
+  EXPECT_GE(picture.cols, 450);  // at least map 0 (450 × 300 cells)
+  EXPECT_GE(picture.rows, 300);
+}
+
+TEST(MergeCommandTest, ThreeMapsGiveEveryPairOnce) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
+  const auto folder = scratchFolder("three");
+  const std::string map = sharedDataPath("maps/carpin-robot0_cast.txt");
+  const CommandRun run = runMerge({map, map, map, "--method", "feature", "--json"}, folder);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json pairs = lastJsonLine(run.output)["pairs"];
+  ASSERT_EQ(pairs.size(), 3u);
+  std::set<std::pair<int, int>> seen;
+  for (const auto& pair : pairs) {
+    EXPECT_LT(pair["to"].get<int>(), pair["from"].get<int>());
+    seen.insert({pair["from"].get<int>(), pair["to"].get<int>()});
+    // A map against itself: the identity.
+    ASSERT_TRUE(pair["accepted"].get<bool>()) << pair.dump();
+    const auto affine = pair["affine"].get<std::vector<std::vector<double>>>();
+    EXPECT_NEAR(affine[0][2], 0.0, 1.0);
+    EXPECT_NEAR(affine[1][2], 0.0, 1.0);
+    EXPECT_NEAR(affine[0][0], 1.0, 1e-3);
+  }
+  EXPECT_EQ(seen.size(), 3u);
+}
+
+TEST(MergeCommandTest, TheDefaultMethodIsTheRegistrysBest) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
+  const auto folder = scratchFolder("default");
+  const CommandRun run = runMerge({sharedDataPath("maps/carpin-robot0_cast.txt"),
+                                   sharedDataPath("maps/carpin-robot1_cast.txt"), "--json"},
+                                  folder);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json pairs = lastJsonLine(run.output)["pairs"];
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0]["method"], fusion::defaultMergerName());
+}
+
+TEST(MergeCommandTest, AMissingFileStopsWithItsPathOnOneLine) {
+  const auto folder = scratchFolder("missing");
+  const std::string missing = (folder / "nowhere.pgm").string();
+  const std::string junk = (folder / "junk.txt").string();
+  std::ofstream(junk) << "0 255\n255\n";
+  for (const auto& arguments :
+       {std::vector<std::string>{missing, junk}, std::vector<std::string>{junk, junk, "--json"}}) {
+    const CommandRun run = runMerge(arguments, folder);
+    EXPECT_NE(run.exit_code, 0) << run.output;
+    EXPECT_THAT(run.output, ::testing::StartsWith("mrslam_merge: " + arguments.front() + ": "));
+    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+  }
+}
+
+TEST(MergeCommandTest, AnUnknownMethodIsRefused) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
+  const auto folder = scratchFolder("method");
+  const std::string map = sharedDataPath("maps/carpin-robot0_cast.txt");
+  const CommandRun run = runMerge({map, map, "--method", "magic"}, folder);
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_THAT(run.output, ::testing::HasSubstr("magic"));
+}
+
+}  // namespace
+}  // namespace mrslam::test

@@ -1,0 +1,166 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mrslam/fusion/merge/similarity.hpp"
+
+namespace mrslam::fusion {
+namespace {
+
+double binaryEntropy(double p) {
+  return -p * std::log2(p) - (1.0 - p) * std::log2(1.0 - p);
+}
+
+GridMap mapOf(int width, int height, std::int8_t fill = GridMap::kUnknown) {
+  GridGeometry geometry;
+  geometry.width = width;
+  geometry.height = height;
+  return GridMap(geometry, fill);
+}
+
+// Free rooms with walls and an irregular inner wall: no shift looks like another.
+GridMap rooms() {
+  GridMap map = mapOf(80, 60, GridMap::kFree);
+  for (int x = 0; x < 80; ++x) {
+    map.at(x, 0) = map.at(x, 59) = GridMap::kOccupied;
+  }
+  for (int y = 0; y < 60; ++y) {
+    map.at(0, y) = map.at(79, y) = GridMap::kOccupied;
+  }
+  for (int y = 10; y < 45; ++y) {
+    map.at(30, y) = GridMap::kOccupied;
+  }
+  for (int x = 30; x < 62; ++x) {
+    map.at(x, 25 + (x - 30) / 4) = GridMap::kOccupied;
+  }
+  return map;
+}
+
+GridMap shiftedMap(const GridMap& map, int dx, int dy) {
+  GridMap shifted = mapOf(map.geometry.width, map.geometry.height);
+  for (int y = 0; y < map.geometry.height; ++y) {
+    for (int x = 0; x < map.geometry.width; ++x) {
+      if (shifted.geometry.contains(x + dx, y + dy)) {
+        shifted.at(x + dx, y + dy) = map.at(x, y);
+      }
+    }
+  }
+  return shifted;
+}
+
+TEST(MergeSimilarityTest, TablesCompareClassesAndFuseEntropy) {
+  const ComparisonTables tables{SimilaritySettings{}};
+  EXPECT_EQ(tables.similarity(0, 10), 1);    // free, free
+  EXPECT_EQ(tables.similarity(100, 90), 1);  // occupied, occupied
+  EXPECT_EQ(tables.similarity(0, 100), -1);  // free, occupied
+  EXPECT_EQ(tables.similarity(50, 0), 0);    // uncertain counts as unknown
+  EXPECT_EQ(tables.similarity(kUnknownCode, 0), 0);
+  EXPECT_NEAR(tables.cellEntropy(0), binaryEntropy(0.05), 1e-12);  // clamped to c = 0.95
+  EXPECT_NEAR(tables.cellEntropy(50), 1.0, 1e-12);
+  EXPECT_EQ(tables.cellEntropy(kUnknownCode), 0.0);
+  EXPECT_LT(tables.entropyChange(0, 0), 0.0);    // agreeing cells become surer
+  EXPECT_GT(tables.entropyChange(0, 100), 0.0);  // contradicting cells become 0.5
+  EXPECT_NEAR(tables.entropyChange(0, 100), 1.0 - 2.0 * binaryEntropy(0.05), 1e-6);
+  EXPECT_EQ(tables.entropyChange(kUnknownCode, 100), 0.0);
+}
+
+TEST(MergeSimilarityTest, VerificationIndexAndEntropyOfAHandCase) {
+  GridMap from = mapOf(3, 1);
+  from.at(0, 0) = GridMap::kFree;
+  from.at(1, 0) = GridMap::kOccupied;
+  GridMap to = mapOf(3, 1);
+  to.at(0, 0) = GridMap::kFree;
+  to.at(1, 0) = GridMap::kFree;
+  to.at(2, 0) = GridMap::kOccupied;
+  const ComparisonTables tables{SimilaritySettings{}};
+  const Agreement sums =
+      compareAt(knownCells(from, tables), codeImage(to, 1, tables), GridTransform{}, tables);
+  EXPECT_EQ(sums.agreement, 1);
+  EXPECT_EQ(sums.disagreement, 1);
+  EXPECT_EQ(sums.similarity(), 0);
+  EXPECT_DOUBLE_EQ(verificationIndex(sums), 0.5);
+  const double h = binaryEntropy(0.05);
+  EXPECT_NEAR(mapEntropy(from, tables), 2.0 * h, 1e-12);
+  EXPECT_NEAR(mapEntropy(to, tables), 3.0 * h, 1e-12);
+  const double fused_free = binaryEntropy(1.0 / (1.0 + 19.0 * 19.0));  // odds 1:19 twice
+  // Merged: the agreeing free cell fused, the contradicting one at 0.5, to's last cell as it is.
+  EXPECT_NEAR(mergedEntropy(mapEntropy(from, tables), mapEntropy(to, tables), sums),
+              fused_free + 1.0 + h, 1e-6);
+  EXPECT_EQ(verificationIndex(Agreement{}), 0.0);
+}
+
+TEST(MergeSimilarityTest, ExhaustiveSearchFindsAKnownShift) {
+  const GridMap from = rooms();
+  const GridMap to = shiftedMap(from, 3, -2);
+  const ComparisonTables tables{SimilaritySettings{}};
+  const TranslationSearch search = searchTranslation(
+      knownCells(from, tables), codeImage(to, 7, tables), GridTransform{}, 5, tables);
+  EXPECT_NEAR((search.best_similarity.t_cells - Eigen::Vector2d(3.0, -2.0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(search.at_best_similarity.disagreement, 0);
+  EXPECT_DOUBLE_EQ(verificationIndex(search.at_best_similarity), 1.0);
+  EXPECT_NEAR((search.least_entropy.t_cells - Eigen::Vector2d(3.0, -2.0)).norm(), 0.0, 1e-12);
+  EXPECT_LT(search.runner_up_similarity, 0.9 * search.at_best_similarity.similarity());
+}
+
+TEST(MergeSimilarityTest, ACorridorSeenAlongItsLengthLeavesTheShiftOpen) {
+  GridMap corridor = mapOf(120, 20, GridMap::kFree);
+  for (int x = 0; x < 120; ++x) {
+    corridor.at(x, 2) = corridor.at(x, 17) = GridMap::kOccupied;
+  }
+  const ComparisonTables tables{SimilaritySettings{}};
+  const TranslationSearch search =
+      searchTranslation(knownCells(corridor, tables), codeImage(corridor, 8, tables),
+                        GridTransform{}, 6, tables, false);
+  EXPECT_GT(search.runner_up_similarity, 0.9 * search.at_best_similarity.similarity());
+}
+
+TEST(MergeSimilarityTest, StructureAgreementCountsWallsLandingNearWalls) {
+  GridMap from = mapOf(10, 10, GridMap::kFree);
+  GridMap to = mapOf(10, 10, GridMap::kFree);
+  from.at(2, 2) = from.at(5, 5) = from.at(8, 8) = GridMap::kOccupied;
+  to.at(3, 2) = GridMap::kOccupied;  // one cell beside (2, 2): near
+  to.at(5, 5) = GridMap::kOccupied;  // on (5, 5): near
+  to.at(8, 8) = GridMap::kUnknown;   // (8, 8) lands on unknown: not counted
+  const ComparisonTables tables{SimilaritySettings{}};
+  StructureAgreement sums = structureAgreement(knownCells(from, tables), codeImage(to, 1, tables),
+                                               GridTransform{}, tables);
+  EXPECT_EQ(sums.near, 2);
+  EXPECT_EQ(sums.far, 0);
+  to.at(5, 5) = GridMap::kFree;
+  sums = structureAgreement(knownCells(from, tables), codeImage(to, 1, tables), GridTransform{},
+                            tables);
+  EXPECT_EQ(sums.near, 1);
+  EXPECT_EQ(sums.far, 1);
+  EXPECT_DOUBLE_EQ(sums.index(), 0.5);
+}
+
+TEST(MergeSimilarityTest, SampleTakesEvenShareOfEachClass) {
+  const GridMap map = rooms();
+  const ComparisonTables tables{SimilaritySettings{}};
+  const std::vector<CellSample> known = knownCells(map, tables);
+  ASSERT_EQ(known.size(), map.cells.size());
+  const std::vector<CellSample> sample = sampleKnownCells(known, tables, 50, 200);
+  long long occupied = 0;
+  for (const CellSample& cell : sample) {
+    occupied += tables.isOccupied(cell.code) ? 1 : 0;
+  }
+  EXPECT_NEAR(static_cast<double>(occupied), 50.0, 1.0);
+  EXPECT_NEAR(static_cast<double>(sample.size() - static_cast<std::size_t>(occupied)), 200.0, 1.0);
+}
+
+TEST(MergeSimilarityTest, RotatedSamplesLandOnTheirRoundedCells) {
+  GridMap from = mapOf(5, 5, GridMap::kFree);
+  from.at(4, 0) = GridMap::kOccupied;
+  GridMap to = mapOf(5, 5, GridMap::kFree);
+  to.at(0, 4) = GridMap::kOccupied;  // (4, 0) turned by 90° about the origin is (0, 4)
+  GridTransform T;
+  T.theta_rad = M_PI / 2.0;
+  T.t_cells = Eigen::Vector2d(0.0, 0.0);
+  const ComparisonTables tables{SimilaritySettings{}};
+  const Agreement sums = compareAt(knownCells(from, tables), codeImage(to, 1, tables), T, tables);
+  EXPECT_EQ(sums.disagreement, 0);
+  EXPECT_EQ(sums.agreement, 5);  // only the column x = 0 of `from` lands inside `to`
+}
+
+}  // namespace
+}  // namespace mrslam::fusion
