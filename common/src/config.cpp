@@ -200,9 +200,14 @@ std::string Config::requireString(const std::string& key) const {
 
 std::string Config::getChoice(const std::string& key, const std::string& default_value,
                               std::initializer_list<const char*> allowed) const {
+  return getChoice(key, default_value, std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+std::string Config::getChoice(const std::string& key, const std::string& default_value,
+                              const std::vector<std::string>& allowed) const {
   const std::string value = getString(key, default_value);
   std::string choices;
-  for (const char* choice : allowed) {
+  for (const std::string& choice : allowed) {
     if (value == choice) {
       return value;
     }

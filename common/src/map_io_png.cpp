@@ -43,6 +43,16 @@ void saveMapPng(const GridMap& map, const std::string& png_path,
     }
   }
   for (const MapOverlay& overlay : overlays) {
+    const cv::Vec3b cell_colour(static_cast<std::uint8_t>(overlay.bgr.x()),
+                                static_cast<std::uint8_t>(overlay.bgr.y()),
+                                static_cast<std::uint8_t>(overlay.bgr.z()));
+    for (const Eigen::Vector2i& cell : overlay.cells) {
+      if (g.contains(cell.x(), cell.y())) {
+        image.at<cv::Vec3b>(g.height - 1 - cell.y(), cell.x()) = cell_colour;
+      }
+    }
+  }
+  for (const MapOverlay& overlay : overlays) {
     if (overlay.trajectory_m.empty()) {
       continue;
     }

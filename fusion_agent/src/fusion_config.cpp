@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "mrslam/fusion/merge/merger_registry.hpp"
+
 namespace mrslam::fusion {
 
 namespace {
@@ -32,8 +34,28 @@ void readFixedTransforms(const Config& config, FusionConfig& fusion) {
   }
 }
 
+// `method` names the merger; a section under its name (`seed:`, `feature:`) holds its settings.
+// Every present method section is checked at load, so a bad merger setting stops the start.
+void loadMergerChoice(const Config& section, FusionConfig& fusion) {
+  std::vector<std::string> choices = mergerNames();
+  choices.push_back("none");
+  fusion.merge_method = section.getChoice("method", fusion.merge_method, choices);
+  for (const std::string& name : mergerNames()) {
+    if (section.has(name)) {
+      makeMerger(name, section.section(name));
+    }
+  }
+  if (fusion.merge_method == "none") {
+    fusion.make_merger = nullptr;
+    return;
+  }
+  const Config settings = section.section(fusion.merge_method);
+  const std::string method = fusion.merge_method;
+  fusion.make_merger = [method, settings]() { return makeMerger(method, settings); };
+}
+
 void loadMerge(const Config& section, FusionConfig& fusion) {
-  fusion.merge_method = section.getChoice("method", fusion.merge_method, {"none"});
+  loadMergerChoice(section, fusion);
   MergeSchedulerSettings& merge = fusion.merge;
   merge.min_interval_s = section.getDouble("min_interval_s", merge.min_interval_s, {0.0, 3600.0});
   merge.material_change = section.getDouble("material_change", merge.material_change, {0.0, 10.0});

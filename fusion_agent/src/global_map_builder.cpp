@@ -105,6 +105,7 @@ void writeFusionOutputs(const GlobalMapResult& result, const std::vector<RobotMa
       }
       MapOverlay overlay;
       overlay.bgr = robotColour(i);
+      overlay.cells = occupiedCellsOf({&maps[i].map, placement.T_reference_robot}, result.map);
       for (const SE2& pose : maps[i].trajectory) {
         overlay.trajectory_m.push_back(placement.T_reference_robot * pose.translation());
       }

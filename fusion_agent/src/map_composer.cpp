@@ -80,25 +80,39 @@ float valueLogOdds(std::int8_t value) {
   return static_cast<float>(std::log(p / (1.0 - p)));
 }
 
+// Looks up, for every global cell, the cell of a placed map it falls in.
+class PlacedLookup {
+ public:
+  PlacedLookup(const PlacedMap& placed, const GridGeometry& global)
+      : placed_(placed), global_(global) {
+    const GridGeometry& local = placed.map->geometry;
+    const SE2 T_robot_reference = placed.T_reference_robot.inverse();
+    rotation_ = T_robot_reference.rotation() / local.resolution_m;
+    offset_ = (T_robot_reference.translation() - local.origin_m) / local.resolution_m;
+  }
+
+  /// The placed map's value at the centre of global cell (gx, gy); unknown outside it.
+  std::int8_t valueAt(int gx, int gy) const {
+    const Eigen::Vector2d q = rotation_ * global_.cellCenter(gx, gy) + offset_;
+    const int cx = static_cast<int>(std::floor(q.x()));
+    const int cy = static_cast<int>(std::floor(q.y()));
+    return placed_.map->geometry.contains(cx, cy) ? placed_.map->at(cx, cy) : GridMap::kUnknown;
+  }
+
+ private:
+  const PlacedMap& placed_;
+  const GridGeometry& global_;
+  Eigen::Matrix2d rotation_;
+  Eigen::Vector2d offset_;
+};
+
 // Adds the evidence of one placed map to the global log-odds sums.
 void accumulate(const PlacedMap& placed, const GridGeometry& global, std::vector<float>& sum,
                 std::vector<std::uint8_t>& known) {
-  const GridMap& map = *placed.map;
-  const GridGeometry& local = map.geometry;
-  const SE2 T_robot_reference = placed.T_reference_robot.inverse();
-  const Eigen::Matrix2d rotation = T_robot_reference.rotation() / local.resolution_m;
-  const Eigen::Vector2d offset =
-      (T_robot_reference.translation() - local.origin_m) / local.resolution_m;
+  const PlacedLookup lookup(placed, global);
   for (int gy = 0; gy < global.height; ++gy) {
     for (int gx = 0; gx < global.width; ++gx) {
-      // Continuous cell coordinates of the global cell centre in the robot map.
-      const Eigen::Vector2d q = rotation * global.cellCenter(gx, gy) + offset;
-      const int cx = static_cast<int>(std::floor(q.x()));
-      const int cy = static_cast<int>(std::floor(q.y()));
-      if (!local.contains(cx, cy)) {
-        continue;
-      }
-      const std::int8_t value = map.at(cx, cy);
+      const std::int8_t value = lookup.valueAt(gx, gy);
       if (value == GridMap::kUnknown) {
         continue;
       }
@@ -133,6 +147,23 @@ GridMap composeGlobalMap(const std::vector<PlacedMap>& maps, const ComposerSetti
     }
   }
   return global;
+}
+
+}  // namespace mrslam::fusion
+
+namespace mrslam::fusion {
+
+std::vector<Eigen::Vector2i> occupiedCellsOf(const PlacedMap& placed, const GridMap& global) {
+  std::vector<Eigen::Vector2i> cells;
+  const PlacedLookup lookup(placed, global.geometry);
+  for (int gy = 0; gy < global.geometry.height; ++gy) {
+    for (int gx = 0; gx < global.geometry.width; ++gx) {
+      if (global.at(gx, gy) > 50 && lookup.valueAt(gx, gy) > 50) {
+        cells.emplace_back(gx, gy);
+      }
+    }
+  }
+  return cells;
 }
 
 }  // namespace mrslam::fusion

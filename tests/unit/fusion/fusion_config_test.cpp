@@ -67,6 +67,25 @@ TEST(FusionConfigTest, BadValuesNameFileLineAndKey) {
   EXPECT_THAT(loadError("dds:\n  domain_id: 300\n"), HasSubstr("fusion.yaml:2: dds.domain_id"));
 }
 
+TEST(FusionConfigTest, TheMergeMethodMakesItsMergerWithItsSettings) {
+  const FusionConfig none = loadFusionConfig(writeConfig("merge:\n  method: none\n"));
+  EXPECT_FALSE(none.make_merger);
+  const FusionConfig seed =
+      loadFusionConfig(writeConfig("merge:\n  method: seed\n  seed:\n    canny_low: 20\n"));
+  ASSERT_TRUE(seed.make_merger);
+  EXPECT_EQ(seed.make_merger()->name(), "seed");
+  const FusionConfig feature = loadFusionConfig(writeConfig("merge:\n  method: feature\n"));
+  ASSERT_TRUE(feature.make_merger);
+  EXPECT_EQ(feature.make_merger()->name(), "feature");
+  EXPECT_THAT(
+      loadError("merge:\n  method: carpin\n"),
+      HasSubstr("fusion.yaml:2: merge.method: 'carpin' is not one of: seed, feature, none"));
+  EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    canny_low: -1\n"),
+              HasSubstr("fusion.yaml:4: merge.seed.canny_low: -1 is out of range"));
+  EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    bogus: 1\n"),
+              HasSubstr("merge.seed.bogus: unknown key"));
+}
+
 TEST(GlobalMapBuilderTest, PlacesConfiguredRobotsAndReportsTheOthers) {
   TeamGraph graph;
   graph.addConfigured("b", "a", SE2(1.0, 0.0, 0.0));

@@ -46,6 +46,8 @@ class Config {
   /// A string that must be one of `allowed`.
   std::string getChoice(const std::string& key, const std::string& default_value,
                         std::initializer_list<const char*> allowed) const;
+  std::string getChoice(const std::string& key, const std::string& default_value,
+                        const std::vector<std::string>& allowed) const;
   /// A list of exactly `size` numbers (any size when size is 0).
   std::vector<double> getDoubles(const std::string& key, const std::vector<double>& default_value,
                                  std::size_t size = 0, Range range = {}) const;

@@ -45,7 +45,8 @@ GridMap loadMapYaml(const std::string& yaml_path);
 /// A trajectory drawn over a map picture, in the map's frame.
 struct MapOverlay {
   std::vector<Eigen::Vector2d> trajectory_m;
-  Eigen::Vector3i bgr{0, 0, 255};  ///< colour of the trajectory (blue, green, red; 0..255)
+  Eigen::Vector3i bgr{0, 0, 255};      ///< colour of the trajectory and cells (blue, green, red)
+  std::vector<Eigen::Vector2i> cells;  ///< map cells (cx, cy) painted in that colour
 };
 
 /// Writes a picture of the map, one pixel per cell, y up (row 0 holds the largest y): free white,

@@ -32,6 +32,9 @@ struct ComposerSettings {
 bool placedBounds(const std::vector<PlacedMap>& maps, Eigen::Vector2d& min_m,
                   Eigen::Vector2d& max_m);
 
+/// The cells of `global` that are occupied there and in the placed map (for pictures).
+std::vector<Eigen::Vector2i> occupiedCellsOf(const PlacedMap& placed, const GridMap& global);
+
 /// The global map, cropped to the known cells; empty (0 × 0) when no cell is known.
 GridMap composeGlobalMap(const std::vector<PlacedMap>& maps, const ComposerSettings& settings);
 
