@@ -75,13 +75,16 @@ void MergeScheduler::loop() {
   }
 }
 
-bool MergeScheduler::isDue(const PairState& state, std::size_t known_from, std::size_t known_to,
-                           bool placed, Clock::time_point now) const {
+bool MergeScheduler::isDue(const PairState& state, const PairMaps& maps, bool placed,
+                           Clock::time_point now) const {
   if (!state.attempted) {
     return true;
   }
   if (placed && !settings_.refine_accepted) {
     return false;
+  }
+  if (maps.both_final && !state.final_merged) {
+    return true;  // the last maps of both robots: merged once more, whatever the interval
   }
   if (now - state.last_attempt < std::chrono::duration<double>(settings_.min_interval_s)) {
     return false;
@@ -90,7 +93,7 @@ bool MergeScheduler::isDue(const PairState& state, std::size_t known_from, std::
     return static_cast<double>(now_known) >
            static_cast<double>(then_known) * (1.0 + settings_.material_change);
   };
-  return grew(known_from, state.known_from) || grew(known_to, state.known_to);
+  return grew(maps.known_from, state.known_from) || grew(maps.known_to, state.known_to);
 }
 
 std::vector<MergeAttempt> MergeScheduler::runDue(const std::vector<RobotMap>& maps,
@@ -107,10 +110,11 @@ std::vector<MergeAttempt> MergeScheduler::runDue(const std::vector<RobotMap>& ma
       }
       PairState& state = pairs_[{maps[from].robot_id, maps[to].robot_id}];
       const bool placed = graph_.estimate(maps[from].robot_id, maps[to].robot_id).has_value();
-      if (!isDue(state, known[from], known[to], placed, now)) {
+      const PairMaps pair{known[from], known[to], maps[from].is_final && maps[to].is_final};
+      if (!isDue(state, pair, placed, now)) {
         continue;
       }
-      state = {now, known[from], known[to], true};
+      state = {now, pair.known_from, pair.known_to, true, pair.both_final};
       attempts.push_back(mergePair(maps[from], maps[to]));
     }
   }

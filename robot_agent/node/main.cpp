@@ -32,6 +32,7 @@ class NoOutput : public mrslam::robot::RobotOutput {
 struct Options {
   std::string config_path;
   std::string config_dir = "config";
+  std::string robot_id;
   int domain = -1;
   double speed = -1.0;
   std::string log;
@@ -141,6 +142,13 @@ RobotConfig loadConfig(Options& options) {
   if (options.domain >= 0) {
     config.dds.domain_id = options.domain;
   }
+  if (!options.robot_id.empty()) {
+    if (!mrslam::isValidRobotId(options.robot_id)) {
+      throw std::invalid_argument("--robot-id: '" + options.robot_id +
+                                  "' is not a robot id (1-64 of A-Z a-z 0-9 _ -)");
+    }
+    config.robot_id = options.robot_id;
+  }
   if (!options.log.empty()) {
     config.source.path = options.log;
     if (detected) {
@@ -187,6 +195,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--domain", options.domain, "DDS domain id (overrides the config)")
       ->check(CLI::Range(0, 232));
+  app.add_option("--robot-id", options.robot_id,
+                 "the robot's id on DDS and in file names (overrides the config)");
   app.add_option(
          "--speed", options.speed,
          "replay speed factor of the log clock, 0 = as fast as possible (overrides the config)")

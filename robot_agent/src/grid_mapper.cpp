@@ -12,9 +12,9 @@ void GridMapper::insertScan(const LaserScan& scan, const SE2& T_map_robot) {
   const SE2 T_map_laser = T_map_robot * mounting_.T_robot_laser;
   const Eigen::Vector2d origin = T_map_laser.translation();
   const double max_range = settings_.max_range_m > 0.0 ? settings_.max_range_m : scan.range_max_m;
-  const double reach = std::max(max_range, settings_.clearing_range_m);
-  grid_.ensureContains(origin - Eigen::Vector2d::Constant(reach),
-                       origin + Eigen::Vector2d::Constant(reach));
+  beams_.clear();
+  Eigen::Vector2d low = origin;
+  Eigen::Vector2d high = origin;
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
     const double range = scan.ranges_m[i];
     if (std::isnan(range) || range < scan.range_min_m) {
@@ -28,7 +28,14 @@ void GridMapper::insertScan(const LaserScan& scan, const SE2& T_map_robot) {
     const double angle = scan.beamAngle(i);
     const Eigen::Vector2d end =
         T_map_laser * Eigen::Vector2d(length * std::cos(angle), length * std::sin(angle));
-    grid_.insertRay(origin, end, hit);
+    low = low.cwiseMin(end);
+    high = high.cwiseMax(end);
+    beams_.push_back({end, hit});
+  }
+  // The grid grows once per scan, to the box of the cells this scan touches.
+  grid_.ensureContains(low, high);
+  for (const Beam& beam : beams_) {
+    grid_.insertRay(origin, beam.end, beam.hit);
   }
 }
 

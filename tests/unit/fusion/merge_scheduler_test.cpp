@@ -71,6 +71,26 @@ TEST(MergeSchedulerTest, MergesNewPairsThenOnlyAfterTheIntervalAndMaterialChange
   EXPECT_EQ(calls, 4);
 }
 
+TEST(MergeSchedulerTest, FinalMapsAreMergedOnceMoreWhateverTheInterval) {
+  TeamGraph graph;
+  int calls = 0;
+  MergeSchedulerSettings settings;
+  settings.min_interval_s = 100.0;
+  MergeScheduler scheduler(
+      settings, [&] { return std::make_unique<ScriptedMerger>(calls, false); }, graph);
+  const auto t0 = MergeScheduler::Clock::now();
+  std::vector<RobotMap> maps = {mapOf("a", 1000), mapOf("b", 1000)};
+  ASSERT_EQ(scheduler.runDue(maps, t0).size(), 1u);
+  // Only a's map is final: the interval still holds.
+  maps[0].is_final = true;
+  EXPECT_TRUE(scheduler.runDue(maps, t0 + std::chrono::seconds(1)).empty());
+  // Both final (with no material change): merged at once, and only once.
+  maps[1].is_final = true;
+  EXPECT_EQ(scheduler.runDue(maps, t0 + std::chrono::seconds(2)).size(), 1u);
+  EXPECT_TRUE(scheduler.runDue(maps, t0 + std::chrono::seconds(3)).empty());
+  EXPECT_EQ(calls, 2);
+}
+
 TEST(MergeSchedulerTest, RefusalsLeaveVerifiedTransformsInPlace) {
   TeamGraph graph;
   PairwiseEstimate known;

@@ -60,9 +60,16 @@ class MergeScheduler {
     std::size_t known_from = 0;
     std::size_t known_to = 0;
     bool attempted = false;
+    bool final_merged = false;  ///< the last attempt had both robots' final maps
+  };
+  /// What isDue needs of the two maps of a pair.
+  struct PairMaps {
+    std::size_t known_from = 0;
+    std::size_t known_to = 0;
+    bool both_final = false;
   };
 
-  bool isDue(const PairState& state, std::size_t known_from, std::size_t known_to, bool placed,
+  bool isDue(const PairState& state, const PairMaps& maps, bool placed,
              Clock::time_point now) const;
   MergeAttempt mergePair(const RobotMap& from, const RobotMap& to);
   void loop();

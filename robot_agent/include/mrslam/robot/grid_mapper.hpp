@@ -1,6 +1,8 @@
 #pragma once
 // Inserts laser scans into the robot's log-odds occupancy grid at the estimated pose.
 
+#include <vector>
+
 #include "mrslam/common/occupancy_grid.hpp"
 #include "mrslam/common/platform.hpp"
 #include "mrslam/common/samples.hpp"
@@ -25,9 +27,15 @@ class GridMapper {
   const OccupancyGrid& grid() const { return grid_; }
 
  private:
+  struct Beam {
+    Eigen::Vector2d end;  ///< where the beam ends in the map frame
+    bool hit = false;     ///< it ends on an obstacle (else it only clears free space)
+  };
+
   MappingSettings settings_;
   SensorMounting mounting_;
   OccupancyGrid grid_;
+  std::vector<Beam> beams_;  ///< scratch of insertScan
 };
 
 }  // namespace mrslam::robot
