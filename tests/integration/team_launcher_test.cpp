@@ -1,0 +1,79 @@
+// The team launcher (mrslam_team) as a user runs it: one team file → robot and fusion agents as
+// separate processes over DDS; its exit code's bits say what failed.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "agent_processes.hpp"
+
+namespace mrslam::test {
+namespace {
+
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream file(path);
+  return nlohmann::json::parse(file);
+}
+
+int runTeam(const std::string& team_file, const std::filesystem::path& out, std::string& log) {
+  auto team = startAgent("tools/mrslam_team",
+                         {team_file, "--bin-dir", binaryPath(""), "--out", out.string(), "--domain",
+                          std::to_string(privateDomain()), "--timeout", "240"},
+                         (out.string() + ".log"));
+  const int code = finish(*team, 300.0);
+  log = logOf(*team);
+  return code;
+}
+
+TEST(TeamLauncherTest, TheIntelTeamFileRunsSplitsAndPlacesEveryRobot) {
+  MRSLAM_REQUIRE_SHARED_DATA("logs/carmen-intel-corrected.log.gz");
+  const auto out = scratchFolder("intel");
+  std::string log;
+  ASSERT_EQ(runTeam(sourcePath("config/intel_team.yaml"), out / "team", log), 0) << log;
+  const nlohmann::json truth = readJson((out / "team" / "segments" / "truth.json").string());
+  const nlohmann::json placed = readJson((out / "team" / "transforms.json").string());
+  ASSERT_EQ(truth["robots"].size(), 3u);
+  ASSERT_EQ(placed["robots"].size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const nlohmann::json& robot = placed["robots"][k];
+    EXPECT_EQ(robot["id"], truth["robots"][k]["id"]);
+    ASSERT_TRUE(robot["placed"].get<bool>()) << robot["id"];
+    EXPECT_LT(std::hypot(robot["x"].get<double>() - truth["robots"][k]["x"].get<double>(),
+                         robot["y"].get<double>() - truth["robots"][k]["y"].get<double>()),
+              0.1)
+        << robot["id"];
+  }
+  for (const char* agent : {"robot1", "robot2", "robot3", "intel_team_fusion"}) {
+    EXPECT_TRUE(std::filesystem::exists(out / "team" / "logs" / (std::string(agent) + ".log")))
+        << agent;
+  }
+}
+
+TEST(TeamLauncherTest, AFailedRobotSetsItsBitAndTheFusionAgentStopsAfterTheGrace) {
+  const auto out = scratchFolder("failing");
+  const std::string team_file = (out / "team.yaml").string();
+  std::ofstream(team_file) << "robots:\n  - config: " << sourcePath("config/sim_robot1.yaml")
+                           << "\n    log: " << (out / "missing.log").string()
+                           << "\nfusion:\n  - config: " << sourcePath("config/sim_fusion.yaml")
+                           << "\nfinal_grace_s: 1\n";
+  std::string log;
+  EXPECT_EQ(runTeam(team_file, out / "team", log), 1) << log;  // the robot bit alone
+  EXPECT_NE(log.find("sim_robot1 ended with exit code"), std::string::npos) << log;
+  // Asked to stop, the fusion agent still wrote its files.
+  EXPECT_TRUE(std::filesystem::exists(out / "team" / "transforms.json")) << log;
+}
+
+TEST(TeamLauncherTest, AMistakeInTheTeamFileIsALaunchFailureNamingTheLine) {
+  const auto out = scratchFolder("bad");
+  const std::string team_file = (out / "team.yaml").string();
+  std::ofstream(team_file) << "robots:\n  - config: x.yaml\n    segment: 2\n";
+  std::string log;
+  EXPECT_EQ(runTeam(team_file, out / "team", log), 4) << log;
+  EXPECT_NE(log.find("team.yaml:3: robots[0].segment: needs a `split:` section"), std::string::npos)
+      << log;
+}
+
+}  // namespace
+}  // namespace mrslam::test

@@ -1,0 +1,52 @@
+#pragma once
+// A team file: which robot agents and fusion agents to start together, each on its own config
+// and data (a device config, a log, a segment of a split log, or the simulator).
+//
+//   domain_id: 44                 # optional: every agent on this DDS domain (else the configs')
+//   split:                        # optional: cut a CARMEN log into segments before starting
+//     log: ../../shared/data/logs/carmen-intel-corrected.log.gz
+//     segments: 3
+//   robots:
+//     - config: intel_team_robot.yaml   # relative paths: from the team file's folder
+//       id: robot1                      # optional: overrides the config's robot_id
+//       segment: 1                      # or  log: FILE  (or neither: the config's own source)
+//   fusion:
+//     - config: intel_team_fusion.yaml
+//   final_grace_s: 120            # after the last robot ended, fusion agents get this long
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mrslam::tools {
+
+struct TeamRobot {
+  std::string config;          ///< robot config file
+  std::string id;              ///< empty: the config's robot_id
+  std::string log;             ///< a log to replay instead of the config's source
+  std::optional<int> segment;  ///< 1-based segment of the team's split log
+  std::string name;            ///< the agent's name in logs (id, or the config's stem)
+};
+
+struct TeamFusion {
+  std::string config;
+  std::string name;  ///< for its log and output folder
+};
+
+struct TeamSplit {
+  std::string log;  ///< CARMEN log cut into segments
+  int segments = 0;
+};
+
+struct TeamSpec {
+  std::optional<int> domain_id;
+  std::optional<TeamSplit> split;
+  std::vector<TeamRobot> robots;
+  std::vector<TeamFusion> fusion;
+  double final_grace_s = 120.0;
+};
+
+/// Reads and checks a team file; a mistake throws ConfigError (`file:line: key: what`).
+TeamSpec loadTeamSpec(const std::string& path);
+
+}  // namespace mrslam::tools

@@ -1,0 +1,205 @@
+#include "mrslam/tools/team_launcher.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <memory>
+#include <thread>
+
+#include "mrslam/tools/carmen_split.hpp"
+#include "mrslam/tools/child_process.hpp"
+
+namespace mrslam::tools {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kStopGraceS = 15.0;  // SIGINT → SIGKILL
+
+struct Agent {
+  std::string name;
+  bool is_robot = false;
+  std::unique_ptr<ChildProcess> process;
+  bool reported = false;
+};
+
+std::optional<int> domainOf(const TeamSpec& team, const TeamRunOptions& options) {
+  return options.domain_id ? options.domain_id : team.domain_id;
+}
+
+void addDomain(std::vector<std::string>& argv, const std::optional<int>& domain) {
+  if (domain) {
+    argv.insert(argv.end(), {"--domain", std::to_string(*domain)});
+  }
+}
+
+std::vector<std::string> segmentPaths(const TeamSpec& team, const fs::path& out) {
+  std::vector<std::string> paths;
+  if (!team.split) {
+    return paths;
+  }
+  SplitSettings settings;
+  settings.segments = team.split->segments;
+  const std::vector<LogSegment> segments =
+      splitCarmenLog(team.split->log, (out / "segments").string(), settings);
+  // The true placements, by the name of the robot that replays each segment.
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    paths.push_back(segments[k].path);
+    names.push_back("segment" + std::to_string(k + 1));
+    for (const TeamRobot& robot : team.robots) {
+      if (robot.segment && static_cast<std::size_t>(*robot.segment) == k + 1) {
+        names.back() = robot.name;
+      }
+    }
+  }
+  writeSplitTruth(segments, names, (out / "segments" / "truth.json").string());
+  return paths;
+}
+
+std::vector<std::string> robotArguments(const TeamRobot& robot, const TeamSpec& team,
+                                        const TeamRunOptions& options,
+                                        const std::vector<std::string>& segments) {
+  std::vector<std::string> argv = {
+      (fs::path(options.bin_dir) / "robot_agent" / "robot_agent").string(), "--config",
+      robot.config};
+  if (!robot.id.empty()) {
+    argv.insert(argv.end(), {"--robot-id", robot.id});
+  }
+  if (robot.segment) {
+    argv.insert(argv.end(), {"--log", segments.at(static_cast<std::size_t>(*robot.segment - 1))});
+  } else if (!robot.log.empty()) {
+    argv.insert(argv.end(), {"--log", robot.log});
+  }
+  argv.insert(argv.end(), {"--out", (fs::path(options.out) / "robots_local").string()});
+  addDomain(argv, domainOf(team, options));
+  return argv;
+}
+
+std::vector<std::string> fusionArguments(const TeamFusion& fusion, const TeamSpec& team,
+                                         const TeamRunOptions& options) {
+  const fs::path out =
+      team.fusion.size() == 1 ? fs::path(options.out) : fs::path(options.out) / fusion.name;
+  std::vector<std::string> argv = {
+      (fs::path(options.bin_dir) / "fusion_agent" / "fusion_agent").string(), "--config",
+      fusion.config, "--out", out.string()};
+  addDomain(argv, domainOf(team, options));
+  return argv;
+}
+
+// Starts every agent (fusion first, so no early map is missed). Throws when one cannot start.
+std::vector<Agent> startAgents(const TeamSpec& team, const TeamRunOptions& options,
+                               const std::vector<std::string>& segments) {
+  const fs::path logs = fs::path(options.out) / "logs";
+  std::vector<Agent> agents;
+  for (const TeamFusion& fusion : team.fusion) {
+    agents.push_back({fusion.name, false,
+                      std::make_unique<ChildProcess>(fusionArguments(fusion, team, options),
+                                                     (logs / (fusion.name + ".log")).string())});
+  }
+  for (const TeamRobot& robot : team.robots) {
+    agents.push_back({robot.name, true,
+                      std::make_unique<ChildProcess>(robotArguments(robot, team, options, segments),
+                                                     (logs / (robot.name + ".log")).string())});
+  }
+  return agents;
+}
+
+// Logs each agent's end once; returns the TeamExit bits of the agents that failed.
+int reportEnded(std::vector<Agent>& agents) {
+  int failed = kTeamOk;
+  for (Agent& agent : agents) {
+    const std::optional<int> code = agent.process->poll();
+    if (!code) {
+      continue;
+    }
+    if (*code != 0) {
+      failed |= agent.is_robot ? kTeamRobotFailed : kTeamFusionFailed;
+    }
+    if (!agent.reported) {
+      agent.reported = true;
+      if (*code == 0) {
+        spdlog::info("team: {} ended", agent.name);
+      } else {
+        spdlog::error("team: {} ended with exit code {}; the end of {}:\n{}", agent.name, *code,
+                      agent.process->logPath(), tailOfFile(agent.process->logPath(), 15));
+      }
+    }
+  }
+  return failed;
+}
+
+bool allEnded(std::vector<Agent>& agents, bool robots_only) {
+  for (Agent& agent : agents) {
+    if ((agent.is_robot || !robots_only) && !agent.process->poll()) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void stopAll(std::vector<Agent>& agents) {
+  for (Agent& agent : agents) {
+    agent.process->signal(SIGINT);
+  }
+  for (Agent& agent : agents) {
+    agent.process->stop(kStopGraceS);
+  }
+}
+
+int watch(std::vector<Agent>& agents, const TeamSpec& team, const TeamRunOptions& options,
+          const std::atomic<bool>& shutdown) {
+  const Clock::time_point start = Clock::now();
+  std::optional<Clock::time_point> robots_done;
+  while (!allEnded(agents, false)) {
+    reportEnded(agents);
+    const double elapsed_s = std::chrono::duration<double>(Clock::now() - start).count();
+    if (shutdown.load()) {
+      spdlog::info("team: stopping every agent");
+      stopAll(agents);
+      break;
+    }
+    if (options.timeout_s > 0.0 && elapsed_s > options.timeout_s) {
+      spdlog::error("team: still running after {} s; stopping every agent", options.timeout_s);
+      stopAll(agents);
+      return reportEnded(agents) | kTeamTimedOut;
+    }
+    if (!robots_done && allEnded(agents, true)) {
+      robots_done = Clock::now();
+    }
+    if (robots_done &&
+        std::chrono::duration<double>(Clock::now() - *robots_done).count() > team.final_grace_s) {
+      spdlog::warn("team: the fusion agents run {} s after the last robot; asking them to stop",
+                   team.final_grace_s);
+      stopAll(agents);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return reportEnded(agents);
+}
+
+}  // namespace
+
+int runTeam(const TeamSpec& team, const TeamRunOptions& options,
+            const std::atomic<bool>& shutdown) {
+  fs::create_directories(fs::path(options.out) / "logs");
+  std::vector<Agent> agents;
+  try {
+    const std::vector<std::string> segments = segmentPaths(team, options.out);
+    agents = startAgents(team, options, segments);
+  } catch (const std::exception& error) {
+    spdlog::error("team: {}", error.what());
+    stopAll(agents);
+    return kTeamLaunchFailed;
+  }
+  spdlog::info("team: {} robot agent(s) and {} fusion agent(s) started; logs in {}",
+               team.robots.size(), team.fusion.size(), (fs::path(options.out) / "logs").string());
+  return watch(agents, team, options, shutdown);
+}
+
+}  // namespace mrslam::tools
