@@ -6,8 +6,10 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
 #include "mrslam/dds/convert.hpp"
+#include "mrslam/dds/ros2_convert.hpp"
 #include "mrslam/dds/topics.hpp"
 #include "mrslam_msgsPubSubTypes.h"
+#include "ros2_msgsPubSubTypes.h"
 
 namespace mrslam::fusion {
 
@@ -39,6 +41,10 @@ FusionNode::FusionNode(const FusionConfig& config, RobotMapStore& store)
       dds::kGlobalMapTopic, dds::kStateWriterProfile);
   transforms_writer_ = participant_.createWriter<msg::PairwiseTransformPubSubType>(
       dds::kTransformsTopic, dds::kStateWriterProfile);
+  if (config.ros2_map) {
+    ros_map_writer_ = participant_.createWriter<nav_msgs::msg::dds_::OccupancyGrid_PubSubType>(
+        dds::kRosMapTopic, dds::kStateWriterProfile);
+  }
   status_reader_ = participant_.createReader<msg::RobotStatusPubSubType>(
       dds::kRobotStatusTopic, dds::kStateReaderProfile, this);
   map_reader_ = participant_.createReader<msg::LocalMapPubSubType>(dds::kLocalMapTopic,
@@ -135,6 +141,11 @@ void FusionNode::publish(const GlobalMapResult& result, std::uint64_t sequence) 
     message.robots().push_back(robot);
   }
   global_map_writer_->write(&message);
+  if (ros_map_writer_ != nullptr) {
+    nav_msgs::msg::dds_::OccupancyGrid_ ros_map;
+    dds::toRosOccupancyGrid(result.map, result.stamp, config_.ros2_frame_id, ros_map);
+    ros_map_writer_->write(&ros_map);
+  }
 }
 
 }  // namespace mrslam::fusion

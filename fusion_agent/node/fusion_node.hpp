@@ -42,6 +42,7 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   eprosima::fastdds::dds::DataReader* status_reader_ = nullptr;
   eprosima::fastdds::dds::DataWriter* global_map_writer_ = nullptr;
   eprosima::fastdds::dds::DataWriter* transforms_writer_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* ros_map_writer_ = nullptr;  ///< rt/map, when configured
 };
 
 }  // namespace mrslam::fusion

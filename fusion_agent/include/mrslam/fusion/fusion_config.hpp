@@ -32,6 +32,8 @@ struct FusionConfig {
   double final_merge_timeout_s = 120.0;  ///< at the end, wait this long for the last merges
   MergeScheduler::MergerFactory make_merger;  ///< set when merge_method is not "none"
   DdsSettings dds;
+  bool ros2_map = true;               ///< also publish the global map on ROS 2's rt/map
+  std::string ros2_frame_id = "map";  ///< its frame (the reference robot's map frame)
 };
 
 /// Loads and validates a fusion config; throws ConfigError (`file:line: key: what is wrong`).
