@@ -9,6 +9,7 @@
 
 #include "fusion_loop.hpp"
 #include "mrslam/common/shutdown.hpp"
+#include "mrslam/common/version.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"mrslam fusion agent: merges the robots' maps into one global map"};
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "output folder (overrides the config)");
   app.add_option("--max-runtime", max_runtime, "give up after this many seconds (0: never)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");
-  app.set_version_flag("--version", "mrslam fusion_agent 0.1.0");
+  app.set_version_flag("--version", mrslam::versionLine("fusion_agent"));
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(log_level));
   try {

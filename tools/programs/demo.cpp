@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "mrslam/common/shutdown.hpp"
+#include "mrslam/common/version.hpp"
 #include "mrslam/tools/child_process.hpp"
 
 namespace {
@@ -115,6 +116,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--speed", options.speed, "replay speed factor, 0 = as fast as possible")
       ->capture_default_str();
+  app.set_version_flag("--version", mrslam::versionLine("demo"));
   CLI11_PARSE(app, argc, argv);
   try {
     return runDemo(options);

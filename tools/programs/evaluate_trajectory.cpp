@@ -14,6 +14,7 @@
 #include <filesystem>
 
 #include "mrslam/common/map_io.hpp"
+#include "mrslam/common/version.hpp"
 #include "mrslam/drivers/log_format.hpp"
 #include "mrslam/robot/evaluation.hpp"
 #include "mrslam/robot/map_quality.hpp"
@@ -192,6 +193,7 @@ int main(int argc, char** argv) {
   app.add_option("--map-dir", options.map_dir, "write each run's map as PNG");
   app.add_option("--rereg-stride", options.rereg_stride,
                  "every this many scans is re-registered against the finished map (rereg rms)");
+  app.set_version_flag("--version", mrslam::versionLine("evaluate_trajectory"));
   CLI11_PARSE(app, argc, argv);
   try {
     if (options.logs.empty() && options.robot_config.empty()) {

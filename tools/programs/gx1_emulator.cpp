@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "mrslam/common/shutdown.hpp"
+#include "mrslam/common/version.hpp"
 #include "mrslam/drivers/gx1_emulator.hpp"
 
 namespace {
@@ -90,6 +91,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 1000.0));
   app.add_flag("--garbage", options.garbage, "answer every request with garbage");
   app.add_flag("--silent", options.silent, "answer nothing");
+  app.set_version_flag("--version", mrslam::versionLine("gx1_emulator"));
   CLI11_PARSE(app, argc, argv);
   try {
     return run(options);

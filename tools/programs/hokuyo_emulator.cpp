@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "mrslam/common/shutdown.hpp"
+#include "mrslam/common/version.hpp"
 #include "mrslam/drivers/hokuyo_emulator.hpp"
 
 namespace {
@@ -60,6 +61,7 @@ int main(int argc, char** argv) {
   app.add_option("--clock-start-ms", options.clock_start_ms,
                  "the device's 24-bit ms counter at start")
       ->check(CLI::Range(0u, (1u << 24) - 1));
+  app.set_version_flag("--version", mrslam::versionLine("hokuyo_emulator"));
   CLI11_PARSE(app, argc, argv);
   try {
     return runEmulator(options);

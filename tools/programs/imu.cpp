@@ -16,6 +16,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "mrslam/common/version.hpp"
 #include "mrslam/drivers/gx1_driver.hpp"
 
 namespace {
@@ -171,6 +172,7 @@ int main(int argc, char** argv) {
   app.add_option("--baud", options.baud, "baud rate");
   app.add_flag("--raw-axes", options.raw_axes, "device axes as sent (no z-down to z-up turn)");
   app.add_flag("--verbose", options.verbose, "log the driver's warnings on stderr");
+  app.set_version_flag("--version", mrslam::versionLine("imu"));
   CLI11_PARSE(app, argc, argv);
   // Logs go to stderr so that stdout stays clean JSON.
   spdlog::set_default_logger(spdlog::stderr_color_mt("mrslam_imu"));

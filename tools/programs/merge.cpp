@@ -25,6 +25,7 @@
 #include <queue>
 
 #include "mrslam/common/map_loaders.hpp"
+#include "mrslam/common/version.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
 #include "mrslam/fusion/merge/merger_registry.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
@@ -292,6 +293,7 @@ int main(int argc, char** argv) {
   app.add_option("--resolution", options.resolution_m, "metres per cell of pictures and .txt")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app.set_version_flag("--version", mrslam::versionLine("merge"));
   CLI11_PARSE(app, argc, argv);
   return run(options);
 }

@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "mrslam/common/map_loaders.hpp"
+#include "mrslam/common/version.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
 #include "mrslam/fusion/merge/merger_registry.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
@@ -275,6 +276,7 @@ int main(int argc, char** argv) {
   app.add_option("--config", options.config, "YAML of merger settings, one section per method");
   app.add_flag("--json", options.json, "print one JSON object");
   app.add_flag("--details", options.details, "with --json: every case's result too");
+  app.set_version_flag("--version", mrslam::versionLine("merge_cases"));
   CLI11_PARSE(app, argc, argv);
   return run(options);
 }

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mrslam/common/shutdown.hpp"
+#include "mrslam/common/version.hpp"
 #include "mrslam/drivers/hokuyo_driver.hpp"
 
 namespace {
@@ -141,6 +142,7 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", options.timeout_s, "seconds to wait for each reply and scan")
       ->check(CLI::Range(0.05, 600.0));
   app.add_flag("--verbose", options.verbose, "log every dropped reply (rate-limited) to stderr");
+  app.set_version_flag("--version", mrslam::versionLine("scan"));
   CLI11_PARSE(app, argc, argv);
   spdlog::set_default_logger(spdlog::stderr_color_st("mrslam_scan"));  // stdout: scans only
   spdlog::set_level(options.verbose ? spdlog::level::info : spdlog::level::err);

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "mrslam/common/version.hpp"
 #include "mrslam/tools/carmen_split.hpp"
 
 int main(int argc, char** argv) {
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
                  "scans each segment repeats from the one before")
       ->check(CLI::Range(0, 100000));
   app.add_option("--prefix", prefix, "robot ids are <prefix>1 … <prefix>K");
+  app.set_version_flag("--version", mrslam::versionLine("split_log"));
   CLI11_PARSE(app, argc, argv);
   try {
     const auto segments = mrslam::tools::splitCarmenLog(log, out, settings);

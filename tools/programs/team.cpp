@@ -8,6 +8,7 @@
 
 #include "mrslam/common/config.hpp"
 #include "mrslam/common/shutdown.hpp"
+#include "mrslam/common/version.hpp"
 #include "mrslam/tools/team_launcher.hpp"
 
 int main(int argc, char** argv) {
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", options.timeout_s,
                  "stop everything after this many seconds (0: never)")
       ->check(CLI::NonNegativeNumber);
-  app.set_version_flag("--version", "mrslam team 0.1.0");
+  app.set_version_flag("--version", mrslam::versionLine("team"));
   CLI11_PARSE(app, argc, argv);
   if (domain >= 0) {
     options.domain_id = domain;
