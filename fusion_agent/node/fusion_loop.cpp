@@ -8,6 +8,8 @@ namespace mrslam::fusion {
 
 namespace {
 
+constexpr double kFlushTimeoutS = 5.0;  // at the end: readers get this long to take the last map
+
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -106,6 +108,7 @@ int FusionLoop::run(const std::atomic<bool>& shutdown) {
       finalMerges();
       publish();
       writeFiles();
+      node_.flush(kFlushTimeoutS);
       if (timed_out && config_.exit_when_final && !complete) {
         spdlog::error("fusion: gave up after {} s; missing: {}", config_.max_runtime_s,
                       missingRobots());

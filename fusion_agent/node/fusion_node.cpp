@@ -14,6 +14,7 @@
 namespace mrslam::fusion {
 
 using eprosima::fastdds::dds::DataReader;
+using eprosima::fastdds::dds::DataWriter;
 using eprosima::fastdds::dds::SampleInfo;
 using eprosima::fastrtps::types::ReturnCode_t;
 
@@ -164,6 +165,17 @@ void FusionNode::publishAttempt(const MergeAttempt& attempt) {
   transform.method(attempt.result.method);
   transform.reason(attempt.result.reason);
   transforms_writer_->write(&transform);
+}
+
+void FusionNode::flush(double timeout_s) {
+  const eprosima::fastrtps::Duration_t timeout(timeout_s);
+  for (DataWriter* writer : {global_map_writer_, transforms_writer_, ros_map_writer_}) {
+    if (writer != nullptr &&
+        writer->wait_for_acknowledgments(timeout) != ReturnCode_t::RETCODE_OK) {
+      spdlog::warn("fusion: a reader of {} did not acknowledge within {} s",
+                   writer->get_topic()->get_name(), timeout_s);
+    }
+  }
 }
 
 }  // namespace mrslam::fusion

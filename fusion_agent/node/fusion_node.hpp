@@ -22,6 +22,10 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   /// One pairwise merge, accepted or refused, on the transforms topic.
   void publishAttempt(const MergeAttempt& attempt);
 
+  /// Waits (up to timeout_s) until every matched reader acknowledged what was last published,
+  /// so that a fusion agent about to exit does not take its last global map with it.
+  void flush(double timeout_s);
+
   /// Maps refused, by reason.
   const ErrorCounter& rejected() const { return rejected_; }
 

@@ -5,8 +5,10 @@
 #include <chrono>
 
 #include "mrslam/dds/convert.hpp"
+#include "mrslam/dds/ros2_convert.hpp"
 #include "mrslam/dds/topics.hpp"
 #include "mrslam_msgsPubSubTypes.h"
+#include "ros2_msgsPubSubTypes.h"
 
 namespace mrslam::robot {
 
@@ -38,7 +40,10 @@ RobotNode::RobotNode(const DdsSettings& settings, const std::string& robot_id)
       map_writer_(participant_.createWriter<msg::LocalMapPubSubType>(dds::kLocalMapTopic,
                                                                      dds::kMapWriterProfile)),
       status_writer_(participant_.createWriter<msg::RobotStatusPubSubType>(
-          dds::kRobotStatusTopic, dds::kStateWriterProfile)) {
+          dds::kRobotStatusTopic, dds::kStateWriterProfile)),
+      ros_pose_writer_(
+          participant_.createWriter<geometry_msgs::msg::dds_::PoseWithCovarianceStamped_PubSubType>(
+              dds::rosPoseTopic(robot_id), dds::kRosPoseWriterProfile)) {
   map_message_.robot_id(robot_id_);
 }
 
@@ -55,6 +60,10 @@ void RobotNode::publishPose(Stamp stamp, const SE2& T_map_robot,
     }
   }
   pose_writer_->write(&message);
+  // The same pose for ROS 2 tools, in the frame of the robot's own map.
+  geometry_msgs::msg::dds_::PoseWithCovarianceStamped_ ros_pose;
+  dds::toRosPose(T_map_robot, covariance, stamp, robot_id_ + "/map", ros_pose);
+  ros_pose_writer_->write(&ros_pose);
 }
 
 void RobotNode::publishMap(const MapSnapshot& snapshot) {

@@ -7,7 +7,10 @@
 
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fstream>
+#include <iterator>
 #include <mutex>
+#include <sstream>
 
 #include "agent_processes.hpp"
 #include "mrslam/common/map_io.hpp"
@@ -21,11 +24,12 @@ namespace {
 
 using namespace eprosima::fastdds::dds;
 
-// Keeps the newest map received on rt/map.
-class RosMapListener : public DataReaderListener {
+// Keeps the newest message received and counts them.
+template <class Message>
+class NewestListener : public DataReaderListener {
  public:
   void on_data_available(DataReader* reader) override {
-    nav_msgs::msg::dds_::OccupancyGrid_ message;
+    Message message;
     SampleInfo info;
     while (reader->take_next_sample(&message, &info) == ReturnCode_t::RETCODE_OK) {
       if (info.valid_data) {
@@ -35,7 +39,7 @@ class RosMapListener : public DataReaderListener {
       }
     }
   }
-  nav_msgs::msg::dds_::OccupancyGrid_ newest() {
+  Message newest() {
     std::lock_guard<std::mutex> lock(mutex_);
     return newest_;
   }
@@ -46,11 +50,29 @@ class RosMapListener : public DataReaderListener {
 
  private:
   std::mutex mutex_;
-  nav_msgs::msg::dds_::OccupancyGrid_ newest_;
+  Message newest_;
   int received_ = 0;
 };
 
-TEST(Ros2TopicsTest, TheGlobalMapArrivesOnRtMapAsANavMsgsOccupancyGrid) {
+using RosMap = nav_msgs::msg::dds_::OccupancyGrid_;
+using RosPose = geometry_msgs::msg::dds_::PoseWithCovarianceStamped_;
+
+// The TUM trajectory line (timestamp x y ...) whose time stamp is `stamp`, or empty.
+std::vector<double> trajectoryLineAt(const std::string& path, double stamp_s) {
+  std::ifstream file(path);
+  std::string line;
+  while (std::getline(file, line)) {
+    std::istringstream fields(line);
+    std::vector<double> values{std::istream_iterator<double>(fields),
+                               std::istream_iterator<double>()};
+    if (values.size() == 8 && std::abs(values[0] - stamp_s) < 1e-6) {
+      return values;
+    }
+  }
+  return {};
+}
+
+TEST(Ros2TopicsTest, MapAndPosesArriveAsRos2MessagesOnRtTopics) {
   MRSLAM_REQUIRE_SHARED_DATA("logs/breezyslam-exp1.dat");
   const auto out = scratchFolder("out");
   const int domain = privateDomain();
@@ -58,10 +80,16 @@ TEST(Ros2TopicsTest, TheGlobalMapArrivesOnRtMapAsANavMsgsOccupancyGrid) {
   settings.domain_id = domain;
   settings.profiles_file = sourcePath("config/dds/profiles.xml");
   dds::Participant participant(settings, "ros2 tool");
-  RosMapListener listener;
+  NewestListener<RosMap> listener;
   DataReader* reader = participant.createReader<nav_msgs::msg::dds_::OccupancyGrid_PubSubType>(
       dds::kRosMapTopic, dds::kStateReaderProfile, &listener);
   ASSERT_EQ(reader->get_topicdescription()->get_type_name(), "nav_msgs::msg::dds_::OccupancyGrid_");
+  NewestListener<RosPose> pose_listener;
+  DataReader* pose_reader =
+      participant.createReader<geometry_msgs::msg::dds_::PoseWithCovarianceStamped_PubSubType>(
+          dds::rosPoseTopic("exp1"), dds::kRosPoseReaderProfile, &pose_listener);
+  ASSERT_EQ(pose_reader->get_topicdescription()->get_type_name(),
+            "geometry_msgs::msg::dds_::PoseWithCovarianceStamped_");
 
   auto fusion = startAgent("fusion_agent/fusion_agent",
                            {"--config", sourcePath("config/breezyslam_fusion.yaml"), "--domain",
@@ -69,17 +97,19 @@ TEST(Ros2TopicsTest, TheGlobalMapArrivesOnRtMapAsANavMsgsOccupancyGrid) {
                            (out / "fusion.log").string());
   std::vector<std::unique_ptr<tools::ChildProcess>> robots;
   for (const std::string robot : {"exp1", "exp2"}) {
-    robots.push_back(startAgent(
-        "robot_agent/robot_agent",
-        {"--config", sourcePath("config/breezyslam_" + robot + ".yaml"), "--log",
-         sharedDataPath("logs/breezyslam-" + robot + ".dat"), "--domain", std::to_string(domain)},
-        (out / (robot + ".log")).string()));
+    robots.push_back(
+        startAgent("robot_agent/robot_agent",
+                   {"--config", sourcePath("config/breezyslam_" + robot + ".yaml"), "--log",
+                    sharedDataPath("logs/breezyslam-" + robot + ".dat"), "--domain",
+                    std::to_string(domain), "--trajectory-out", (out / (robot + ".tum")).string()},
+                   (out / (robot + ".log")).string()));
   }
   for (auto& robot : robots) {
     ASSERT_EQ(finish(*robot, 120.0), 0) << logOf(*robot);
   }
   ASSERT_EQ(finish(*fusion, 120.0), 0) << logOf(*fusion);
   reader->set_listener(nullptr);
+  pose_reader->set_listener(nullptr);
 
   ASSERT_GT(listener.received(), 0) << "nothing arrived on rt/map";
   const nav_msgs::msg::dds_::OccupancyGrid_ message = listener.newest();
@@ -97,6 +127,22 @@ TEST(Ros2TopicsTest, TheGlobalMapArrivesOnRtMapAsANavMsgsOccupancyGrid) {
     differing += static_cast<std::int8_t>(message.data()[i]) != written.cells[i];
   }
   EXPECT_EQ(differing, 0u) << "cells of rt/map differ from global_map.yaml";
+
+  // The last pose of exp1 on rt/exp1/pose: in its own map frame, equal to the trajectory's pose
+  // at that time stamp, with a covariance of positive variances.
+  ASSERT_GT(pose_listener.received(), 0) << "nothing arrived on rt/exp1/pose";
+  const RosPose pose = pose_listener.newest();
+  EXPECT_EQ(pose.header().frame_id(), "exp1/map");
+  const double stamp_s = pose.header().stamp().sec() + 1e-9 * pose.header().stamp().nanosec();
+  const std::vector<double> tum = trajectoryLineAt((out / "exp1.tum").string(), stamp_s);
+  ASSERT_EQ(tum.size(), 8u) << "no trajectory line at " << stamp_s;
+  EXPECT_NEAR(pose.pose().pose().position().x(), tum[1], 1e-6);
+  EXPECT_NEAR(pose.pose().pose().position().y(), tum[2], 1e-6);
+  EXPECT_NEAR(pose.pose().pose().orientation().z(), tum[6], 1e-6);
+  EXPECT_NEAR(pose.pose().pose().orientation().w(), tum[7], 1e-6);
+  EXPECT_GT(pose.pose().covariance()[0], 0.0);
+  EXPECT_GT(pose.pose().covariance()[7], 0.0);
+  EXPECT_GT(pose.pose().covariance()[35], 0.0);
 }
 
 }  // namespace

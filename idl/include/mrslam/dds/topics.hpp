@@ -15,5 +15,7 @@ inline constexpr const char* kMapWriterProfile = "mrslam_map_writer";
 inline constexpr const char* kMapReaderProfile = "mrslam_map_reader";
 inline constexpr const char* kStateWriterProfile = "mrslam_state_writer";
 inline constexpr const char* kStateReaderProfile = "mrslam_state_reader";
+inline constexpr const char* kRosPoseWriterProfile = "mrslam_ros_pose_writer";
+inline constexpr const char* kRosPoseReaderProfile = "mrslam_ros_pose_reader";
 
 }  // namespace mrslam::dds
