@@ -12,7 +12,9 @@
 
 #include "mrslam/common/map_io.hpp"
 #include "mrslam/common/shutdown.hpp"
+#include "mrslam/common/version.hpp"
 #include "mrslam/drivers/log_format.hpp"
+#include "mrslam/drivers/mrslam_log.hpp"
 #include "mrslam/robot/robot_config.hpp"
 #include "mrslam/robot/trajectory_io.hpp"
 #include "robot_node.hpp"
@@ -42,6 +44,7 @@ struct Options {
   long long seed = -1;
   std::string out;
   std::string trajectory_out;
+  std::string record;
   bool no_dds = false;
 };
 
@@ -77,7 +80,12 @@ void writeOutputs(const Options& options, const mrslam::robot::RobotPipeline& pi
 }
 
 int runRobot(const Options& options, const RobotConfig& config) {
-  auto source = mrslam::robot::openSource(config);
+  std::unique_ptr<mrslam::drivers::SampleSource> source = mrslam::robot::openSource(config);
+  if (!options.record.empty()) {
+    source = std::make_unique<mrslam::drivers::RecordingSource>(std::move(source), options.record,
+                                                                config.robot_id);
+    spdlog::info("{}: recording every sample to {}", config.robot_id, options.record);
+  }
   auto estimator = mrslam::robot::makeEstimator(config, config.estimator.type);
   const auto* ekf = dynamic_cast<const mrslam::robot::EkfEstimator*>(estimator.get());
   auto pipeline = std::make_unique<mrslam::robot::RobotPipeline>(config.mapping, config.mounting,
@@ -121,22 +129,32 @@ RobotConfig loadConfig(Options& options) {
     options.log = options.positional_log;
   }
   std::string config_path = options.config_path;
+  // A log given on the command line is read by the reader its content asks for.
   std::optional<mrslam::robot::SourceType> detected;
-  if (config_path.empty()) {
-    if (options.log.empty()) {
-      throw std::invalid_argument("give --config, or a log to replay");
-    }
+  if (!options.log.empty()) {
     const mrslam::drivers::LogFormat format = mrslam::drivers::detectLogFormat(options.log);
     if (format == mrslam::drivers::LogFormat::kUnknown) {
-      throw std::invalid_argument(options.log + ": neither a CARMEN nor a BreezySLAM log");
+      throw std::invalid_argument(options.log +
+                                  ": neither a CARMEN, a BreezySLAM nor an mrslam log");
     }
-    const bool carmen = format == mrslam::drivers::LogFormat::kCarmen;
-    config_path =
-        (std::filesystem::path(options.config_dir) / (carmen ? "carmen.yaml" : "breezyslam.yaml"))
-            .string();
-    detected = carmen ? mrslam::robot::SourceType::kCarmen : mrslam::robot::SourceType::kBreezySlam;
-    spdlog::info("robot_agent: {} log, config {}", mrslam::drivers::logFormatName(format),
-                 config_path);
+    detected = format == mrslam::drivers::LogFormat::kCarmen ? mrslam::robot::SourceType::kCarmen
+               : format == mrslam::drivers::LogFormat::kMrslam
+                   ? mrslam::robot::SourceType::kLog
+                   : mrslam::robot::SourceType::kBreezySlam;
+    if (config_path.empty()) {
+      if (format == mrslam::drivers::LogFormat::kMrslam) {
+        throw std::invalid_argument(
+            options.log + ": an mrslam log needs the --robot-config it was recorded with");
+      }
+      const bool carmen = format == mrslam::drivers::LogFormat::kCarmen;
+      config_path =
+          (std::filesystem::path(options.config_dir) / (carmen ? "carmen.yaml" : "breezyslam.yaml"))
+              .string();
+      spdlog::info("robot_agent: {} log, config {}", mrslam::drivers::logFormatName(format),
+                   config_path);
+    }
+  } else if (config_path.empty()) {
+    throw std::invalid_argument("give --config, or a log to replay");
   }
   RobotConfig config = mrslam::robot::loadRobotConfig(config_path);
   if (options.domain >= 0) {
@@ -205,9 +223,11 @@ int main(int argc, char** argv) {
   app.add_option("--out", options.out, "write the final map (YAML/PGM/PNG) into this folder");
   app.add_option("--trajectory-out", options.trajectory_out,
                  "write the pose at every scan in TUM format to this file");
+  app.add_option("--record", options.record,
+                 "write every sample read to this mrslam log (replay it with --log)");
   app.add_flag("--no-dds", options.no_dds, "run without DDS (offline replay)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");
-  app.set_version_flag("--version", "mrslam robot_agent 0.1.0");
+  app.set_version_flag("--version", mrslam::versionLine("robot_agent"));
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(log_level));
   try {
