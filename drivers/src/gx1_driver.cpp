@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "device_host_clock.hpp"
+#include "mrslam/drivers/device_host_clock.hpp"
 
 namespace mrslam::drivers {
 

@@ -1,6 +1,6 @@
 #include "hokuyo_link.hpp"
 
-#include "device_host_clock.hpp"
+#include "mrslam/drivers/device_host_clock.hpp"
 
 #include <algorithm>
 #include <cstdint>

@@ -6,7 +6,7 @@
 
 #include <mutex>
 
-#include "device_host_clock.hpp"
+#include "mrslam/drivers/device_host_clock.hpp"
 #include "phidget_library.hpp"
 
 namespace mrslam::drivers {

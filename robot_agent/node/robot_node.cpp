@@ -94,6 +94,15 @@ void RobotNode::publishStatus(const StatusReport& report) {
   source.samples(report.source_counters.samples);
   source.errors(report.source_counters.malformed_records);
   message.sensors().push_back(source);
+  for (const drivers::SensorStatus& sensor : report.sensors) {
+    msg::SensorHealth health;
+    health.name(sensor.name);
+    health.source(sensor.source);
+    health.healthy(sensor.healthy);
+    health.samples(sensor.samples);
+    health.errors(sensor.errors);
+    message.sensors().push_back(health);
+  }
   message.scans_processed(report.pipeline_counters.scans);
   message.malformed_records(report.source_counters.malformed_records);
   message.maps_published(report.maps_published);

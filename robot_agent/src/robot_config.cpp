@@ -1,5 +1,6 @@
 #include "mrslam/robot/robot_config.hpp"
 
+#include "mrslam/common/shutdown.hpp"
 #include "mrslam/drivers/breezyslam_reader.hpp"
 #include "mrslam/drivers/carmen_reader.hpp"
 #include "mrslam/drivers/log_format.hpp"
@@ -8,14 +9,49 @@ namespace mrslam::robot {
 
 namespace {
 
+DeviceFallback loadFallback(const Config& device) {
+  return device.getChoice("fallback", "replay", {"replay", "none"}) == "none"
+             ? DeviceFallback::kNone
+             : DeviceFallback::kReplay;
+}
+
+// source.devices: laser (Hokuyo), imu (3DM-GX1), encoders (Phidget), each optional, each with
+// its fallback; replay_log feeds the fallbacks.
+DeviceSourceSettings loadDevices(const Config& section) {
+  DeviceSourceSettings devices;
+  devices.replay_log = section.getPath("replay_log", "");
+  devices.reopen_period_s =
+      section.getDouble("reopen_period_s", devices.reopen_period_s, {0.01, 3600.0});
+  if (section.has("laser")) {
+    devices.laser = drivers::loadHokuyoSettings(section.section("laser"));
+    devices.laser_fallback = loadFallback(section.section("laser"));
+  }
+  if (section.has("imu")) {
+    devices.imu = drivers::Gx1Settings::fromConfig(section.section("imu"));
+    devices.imu_fallback = loadFallback(section.section("imu"));
+  }
+  if (section.has("encoders")) {
+    devices.encoders = drivers::PhidgetEncoderSettings::fromConfig(section.section("encoders"));
+    devices.encoders_fallback = loadFallback(section.section("encoders"));
+  }
+  if (!devices.laser && !devices.imu && !devices.encoders) {
+    section.fail("laser", "a devices source needs at least one of laser, imu, encoders");
+  }
+  return devices;
+}
+
 SourceSettings loadSource(const Config& section) {
   SourceSettings source;
-  const std::string type =
-      section.getChoice("type", "simulator", {"simulator", "log", "breezyslam", "carmen"});
+  const std::string type = section.getChoice(
+      "type", "simulator", {"simulator", "log", "breezyslam", "carmen", "devices"});
   source.type = type == "simulator"    ? SourceType::kSimulator
                 : type == "log"        ? SourceType::kLog
                 : type == "breezyslam" ? SourceType::kBreezySlam
+                : type == "devices"    ? SourceType::kDevices
                                        : SourceType::kCarmen;
+  if (source.type == SourceType::kDevices) {
+    source.devices = loadDevices(section.section("devices"));
+  }
   source.path = section.getPath("path", "");  // may be left to the command line (--log)
   source.malformed = section.getChoice("malformed", "skip", {"skip", "stop"}) == "stop"
                          ? drivers::MalformedPolicy::kStop
@@ -115,13 +151,17 @@ namespace {
 
 std::unique_ptr<drivers::SampleSource> openUnwrappedSource(const RobotConfig& config) {
   const SourceSettings& source = config.source;
-  if (source.type != SourceType::kSimulator && source.path.empty()) {
+  const bool needs_log =
+      source.type != SourceType::kSimulator && source.type != SourceType::kDevices;
+  if (needs_log && source.path.empty()) {
     throw std::runtime_error("source.path: a log source needs the path of its log (--log)");
   }
   switch (source.type) {
     case SourceType::kSimulator:
       return std::make_unique<drivers::Simulator>(config.simulator, config.platform,
                                                   config.mounting);
+    case SourceType::kDevices:
+      return std::make_unique<DeviceSource>(source.devices, shutdownRequested());
     case SourceType::kLog:
       return drivers::openLogReader(source.path, source.malformed);
     case SourceType::kBreezySlam: {

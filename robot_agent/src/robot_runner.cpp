@@ -98,6 +98,7 @@ void RobotRunner::publishStatus(RobotState state, const std::string& message) {
   report.message = message;
   report.source = source_.describe();
   report.source_counters = source_.counters();
+  report.sensors = source_.sensors();
   report.pipeline_counters = pipeline_.counters();
   report.maps_published = maps_published_;
   output_.publishStatus(report);

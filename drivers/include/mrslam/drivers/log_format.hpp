@@ -57,9 +57,10 @@ enum class LogFormat { kBreezySlam, kCarmen, kMrslam, kUnknown };
 const char* logFormatName(LogFormat format);
 
 /// The format of a log, plain or gzip: kMrslam when its first line is kMrslamLogMagic; otherwise
-/// judged by its first meaningful line (empty and '#' lines are passed over): a known CARMEN message name (PARAM, ODOM, FLASER, ...) means kCarmen; a
-/// line of at least 26 numbers starting with an integer time stamp means kBreezySlam; anything
-/// else kUnknown. Throws std::runtime_error("path: cannot open ...") when the file cannot be read.
+/// judged by its first meaningful line (empty and '#' lines are passed over): a known CARMEN
+/// message name (PARAM, ODOM, FLASER, ...) means kCarmen; a line of at least 26 numbers starting
+/// with an integer time stamp means kBreezySlam; anything else kUnknown. Throws
+/// std::runtime_error("path: cannot open ...") when the file cannot be read.
 LogFormat detectLogFormat(const std::string& path);
 
 /// The reader for the log at `path` with its default settings and `policy`. Throws

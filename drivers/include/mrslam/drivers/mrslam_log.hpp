@@ -101,6 +101,7 @@ class RecordingSource final : public SampleSource {
   }
   std::string describe() const override { return source_->describe() + " (recorded)"; }
   SourceCounters counters() const override { return source_->counters(); }
+  std::vector<SensorStatus> sensors() const override { return source_->sensors(); }
 
  private:
   std::unique_ptr<SampleSource> source_;

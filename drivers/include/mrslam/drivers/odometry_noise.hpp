@@ -38,6 +38,7 @@ class OdometryNoiseSource final : public SampleSource {
   /// The wrapped source's description plus the noise, e.g. "... + odometry noise 0.1,2 (seed 7)".
   std::string describe() const override;
   SourceCounters counters() const override { return source_->counters(); }
+  std::vector<SensorStatus> sensors() const override { return source_->sensors(); }
 
  private:
   OdometryPose addNoise(const OdometryPose& odometry);

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "mrslam/common/samples.hpp"
 
@@ -16,6 +17,15 @@ struct SourceCounters {
   std::uint64_t out_of_order_stamps = 0;  ///< samples whose stamp is older than the one before
 };
 
+/// How one sensor of a live source is doing (the robot status carries it).
+struct SensorStatus {
+  std::string name;      ///< laser, imu, encoders
+  std::string source;    ///< device, fallback, absent, starting
+  bool healthy = false;  ///< reading its device
+  std::uint64_t samples = 0;
+  std::uint64_t errors = 0;  ///< times its device was lost
+};
+
 /// A stream of samples in the order they are to be processed (time order for a log: file order).
 class SampleSource {
  public:
@@ -26,6 +36,8 @@ class SampleSource {
   /// A short description for logs, e.g. "breezyslam log ../shared/data/logs/exp1.dat".
   virtual std::string describe() const = 0;
   virtual SourceCounters counters() const = 0;
+  /// Per-sensor health of a live source (devices); empty for logs and the simulator.
+  virtual std::vector<SensorStatus> sensors() const { return {}; }
 };
 
 /// What a log reader does with a malformed line.

@@ -10,6 +10,7 @@
 #include "mrslam/drivers/odometry_noise.hpp"
 #include "mrslam/drivers/sample_source.hpp"
 #include "mrslam/drivers/simulator.hpp"
+#include "mrslam/robot/device_source.hpp"
 #include "mrslam/robot/estimator_config.hpp"
 #include "mrslam/robot/grid_mapper.hpp"
 #include "mrslam/robot/odometry_estimator.hpp"
@@ -17,7 +18,7 @@
 
 namespace mrslam::robot {
 
-enum class SourceType { kSimulator, kLog, kBreezySlam, kCarmen };
+enum class SourceType { kSimulator, kLog, kBreezySlam, kCarmen, kDevices };
 
 struct SourceSettings {
   SourceType type = SourceType::kSimulator;  ///< where the samples come from
@@ -27,6 +28,7 @@ struct SourceSettings {
   /// Seeded noise added to the log's odometry poses (`odometry_noise: [f, deg_per_m]`, `seed`);
   /// off by default. For logs whose odometry is perfect (the corrected CARMEN logs).
   drivers::OdometryNoiseSettings odometry_noise;
+  DeviceSourceSettings devices;  ///< type devices: the robot's own devices and their fallbacks
 };
 
 struct RobotConfig {

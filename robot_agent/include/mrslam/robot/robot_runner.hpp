@@ -31,6 +31,7 @@ struct StatusReport {
   std::string message;
   std::string source;  ///< SampleSource::describe()
   drivers::SourceCounters source_counters;
+  std::vector<drivers::SensorStatus> sensors;  ///< of a live source (devices)
   PipelineCounters pipeline_counters;
   std::uint64_t maps_published = 0;
 };
