@@ -65,6 +65,47 @@ void FusionNode::on_subscription_matched(
   }
 }
 
+bool FusionNode::noteWriter(const std::string& robot_id,
+                            const eprosima::fastrtps::rtps::InstanceHandle_t& writer) {
+  std::lock_guard<std::mutex> lock(writers_mutex_);
+  const auto known = writer_of_robot_.find(robot_id);
+  const bool first = known == writer_of_robot_.end();
+  const bool restarted = !first && known->second != writer;
+  writer_of_robot_[robot_id] = writer;
+  robot_of_writer_[writer] = robot_id;
+  if (first) {
+    spdlog::info("fusion: first map of {} received", robot_id);
+  } else if (restarted) {
+    spdlog::warn("fusion: {} sends from a new agent (restarted?): its new map replaces the old",
+                 robot_id);
+  }
+  return restarted;
+}
+
+void FusionNode::on_liveliness_changed(
+    DataReader* reader, const eprosima::fastdds::dds::LivelinessChangedStatus& status) {
+  if (reader != map_reader_) {
+    return;
+  }
+  std::string robot_id;
+  {
+    std::lock_guard<std::mutex> lock(writers_mutex_);
+    const auto found = robot_of_writer_.find(status.last_publication_handle);
+    if (found == robot_of_writer_.end()) {
+      return;  // a writer that never sent a map
+    }
+    robot_id = found->second;
+  }
+  if (status.not_alive_count_change > 0 && !store_.isFinal(robot_id)) {
+    if (store_.setStale(robot_id, true)) {
+      spdlog::warn("fusion: {} fell silent (its lease ran out); its last map stays, marked stale",
+                   robot_id);
+    }
+  } else if (status.alive_count_change > 0 && store_.setStale(robot_id, false)) {
+    spdlog::info("fusion: {} is back", robot_id);
+  }
+}
+
 void FusionNode::on_data_available(DataReader* reader) {
   if (reader == map_reader_) {
     receiveMaps(reader);
@@ -108,7 +149,8 @@ void FusionNode::receiveMaps(DataReader* reader) {
     }
     const bool is_final = map.is_final;
     const std::uint64_t sequence = map.sequence;
-    if (store_.update(std::move(map)) == RobotMapStore::Outcome::kOutdated) {
+    const bool restarted = noteWriter(robot_id, info.publication_handle);
+    if (store_.update(std::move(map), restarted) == RobotMapStore::Outcome::kOutdated) {
       rejected_.report("outdated", "an older map of '" + robot_id + "' arrived late");
     } else if (is_final) {
       spdlog::info("fusion: final map {} of {} received", sequence, robot_id);

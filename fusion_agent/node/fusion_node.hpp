@@ -2,6 +2,8 @@
 // The fusion agent's DDS glue: receives every robot's local map (checked before it is stored),
 // publishes the global map and the robots' placements.
 
+#include <map>
+#include <mutex>
 #include <string>
 
 #include "mrslam/common/error_counter.hpp"
@@ -30,6 +32,9 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   const ErrorCounter& rejected() const { return rejected_; }
 
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override;
+  void on_liveliness_changed(
+      eprosima::fastdds::dds::DataReader* reader,
+      const eprosima::fastdds::dds::LivelinessChangedStatus& status) override;
   void on_subscription_matched(
       eprosima::fastdds::dds::DataReader* reader,
       const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) override;
@@ -37,6 +42,9 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
  private:
   void receiveMaps(eprosima::fastdds::dds::DataReader* reader);
   void receiveStatus(eprosima::fastdds::dds::DataReader* reader);
+  /// Remembers which writer sends a robot's maps; true when it is a new one (a restart).
+  bool noteWriter(const std::string& robot_id,
+                  const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
 
   const FusionConfig& config_;
   RobotMapStore& store_;
@@ -46,7 +54,11 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   eprosima::fastdds::dds::DataReader* status_reader_ = nullptr;
   eprosima::fastdds::dds::DataWriter* global_map_writer_ = nullptr;
   eprosima::fastdds::dds::DataWriter* transforms_writer_ = nullptr;
-  eprosima::fastdds::dds::DataWriter* ros_map_writer_ = nullptr;  ///< rt/map, when configured
+  eprosima::fastdds::dds::DataWriter* ros_map_writer_ = nullptr;
+  std::mutex writers_mutex_;
+  std::map<std::string, eprosima::fastrtps::rtps::InstanceHandle_t> writer_of_robot_;
+  std::map<eprosima::fastrtps::rtps::InstanceHandle_t, std::string>
+      robot_of_writer_;  ///< rt/map, when configured
 };
 
 }  // namespace mrslam::fusion

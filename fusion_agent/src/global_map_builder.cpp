@@ -53,6 +53,7 @@ void writeReceivedJson(const std::vector<RobotMap>& maps, const std::string& pat
                       {"sequence", map.sequence},
                       {"scans_inserted", map.scans_inserted},
                       {"final", map.is_final},
+                      {"stale", map.stale},
                       {"stamp", map.stamp.toString()},
                       {"width", map.map.geometry.width},
                       {"height", map.map.geometry.height},

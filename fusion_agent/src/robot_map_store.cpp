@@ -2,16 +2,31 @@
 
 namespace mrslam::fusion {
 
-RobotMapStore::Outcome RobotMapStore::update(RobotMap map) {
+RobotMapStore::Outcome RobotMapStore::update(RobotMap map, bool restarted) {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto found = maps_.find(map.robot_id);
-  if (found != maps_.end() && found->second.sequence >= map.sequence) {
+  if (!restarted && found != maps_.end() && found->second.sequence >= map.sequence) {
     return Outcome::kOutdated;
   }
+  map.stale = false;
   const std::string robot_id = map.robot_id;
   maps_[robot_id] = std::move(map);
   ++version_;
   return Outcome::kStored;
+}
+
+bool RobotMapStore::setStale(const std::string& robot_id, bool stale) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto found = maps_.find(robot_id);
+  if (found == maps_.end()) {
+    return false;
+  }
+  if (found->second.stale == stale) {
+    return false;
+  }
+  found->second.stale = stale;
+  ++version_;  // the outputs change
+  return true;
 }
 
 std::vector<RobotMap> RobotMapStore::snapshot() const {

@@ -30,5 +30,29 @@ TEST(RobotMapStoreTest, KeepsTheNewestMapOfEachRobot) {
   EXPECT_FALSE(store.has("c"));
 }
 
+TEST(RobotMapStoreTest, AStaleMapIsKeptFlaggedUntilTheRobotSendsAgain) {
+  RobotMapStore store;
+  EXPECT_FALSE(store.setStale("a", true));  // no map of it
+  store.update(mapOf("a", 5));
+  const std::uint64_t version = store.version();
+  EXPECT_TRUE(store.setStale("a", true));
+  EXPECT_FALSE(store.setStale("a", true));  // already stale: nothing changes
+  EXPECT_GT(store.version(), version);
+  ASSERT_EQ(store.snapshot().size(), 1u);
+  EXPECT_TRUE(store.snapshot()[0].stale);
+  EXPECT_EQ(store.snapshot()[0].sequence, 5u);  // the last map stays
+  store.update(mapOf("a", 6));
+  EXPECT_FALSE(store.snapshot()[0].stale);
+}
+
+TEST(RobotMapStoreTest, ARestartedRobotNumbersAgainAndReplacesItsOldMap) {
+  RobotMapStore store;
+  store.update(mapOf("a", 40));
+  EXPECT_EQ(store.update(mapOf("a", 1)), RobotMapStore::Outcome::kOutdated);
+  EXPECT_EQ(store.update(mapOf("a", 1), true), RobotMapStore::Outcome::kStored);
+  EXPECT_EQ(store.snapshot()[0].sequence, 1u);
+  EXPECT_EQ(store.update(mapOf("a", 2)), RobotMapStore::Outcome::kStored);
+}
+
 }  // namespace
 }  // namespace mrslam::fusion

@@ -20,6 +20,7 @@ struct RobotMap {
   std::uint64_t sequence = 0;
   std::uint64_t scans_inserted = 0;
   bool is_final = false;
+  bool stale = false;  ///< its agent fell silent (lease ran out): the last map is kept, flagged
   GridMap map;
   std::vector<SE2> trajectory;  ///< robot poses in its own map frame
 };
@@ -28,8 +29,13 @@ class RobotMapStore {
  public:
   enum class Outcome { kStored, kOutdated };
 
-  /// Keeps `map` unless the store holds a newer one of that robot (higher sequence number).
-  Outcome update(RobotMap map);
+  /// Keeps `map` unless the store holds a newer one of that robot (higher sequence number). A
+  /// map from a new agent of the robot (`restarted`: its numbering starts again) replaces the
+  /// old one whatever its number. A stored map is not stale.
+  Outcome update(RobotMap map, bool restarted = false);
+  /// Flags (or unflags) a robot's map as stale; true when that changed the flag (false when it
+  /// was already so, or the store has no map of the robot).
+  bool setStale(const std::string& robot_id, bool stale);
 
   /// A copy of every robot's newest map, ordered by robot id.
   std::vector<RobotMap> snapshot() const;
