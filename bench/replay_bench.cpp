@@ -1,10 +1,11 @@
-// Log replay throughput: scans per second through the reader alone, and through the whole robot
-// pipeline (reader, odometry, grid mapping), on the real logs of ../shared/data.
+// Log replay throughput: scans and lines per second through the reader alone, and through the whole
+// robot pipeline (reader, odometry, grid mapping), on the real logs of ../shared/data.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
 #include <string>
 
+#include "mrslam/drivers/line_reader.hpp"
 #include "mrslam/drivers/log_format.hpp"
 #include "mrslam/robot/grid_mapper.hpp"
 #include "mrslam/robot/odometry_estimator.hpp"
@@ -30,11 +31,23 @@ void countScans(benchmark::State& state, double scans) {
                                                  benchmark::Counter::kIsRate);
 }
 
+// Lines of the (decompressed) log, for a lines-per-second figure.
+double countLines(const std::string& path) {
+  drivers::LineReader reader(path);
+  std::string line;
+  double lines = 0.0;
+  while (reader.next(line)) {
+    lines += 1.0;
+  }
+  return lines;
+}
+
 void BM_ReadLog(benchmark::State& state, const std::string& name) {
   const std::string path = logPath(name);
   if (skipWithoutLog(state, path)) {
     return;
   }
+  const double lines = countLines(path);
   double scans = 0.0;
   for (auto _ : state) {
     auto reader = drivers::openLogReader(path, drivers::MalformedPolicy::kStop);
@@ -44,6 +57,8 @@ void BM_ReadLog(benchmark::State& state, const std::string& name) {
     }
   }
   countScans(state, scans);
+  state.counters["lines/s"] = benchmark::Counter(lines * static_cast<double>(state.iterations()),
+                                                 benchmark::Counter::kIsRate);
 }
 
 void BM_ReplayLog(benchmark::State& state, const std::string& name, double max_range_m,

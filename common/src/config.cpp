@@ -1,6 +1,7 @@
 #include "mrslam/common/config.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -248,12 +249,53 @@ std::vector<double> Config::getDoubles(const std::string& key,
   return values;
 }
 
+std::string Config::getExpandedString(const std::string& key,
+                                      const std::string& default_value) const {
+  if (!has(key)) {
+    document_->keys_read.insert(fullKey(key));
+    return default_value;
+  }
+  const std::string text = getString(key, default_value);
+  std::string expanded;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t open = text.find("${", at);
+    if (open == std::string::npos) {
+      expanded += text.substr(at);
+      break;
+    }
+    const std::size_t close = text.find('}', open);
+    if (close == std::string::npos) {
+      fail(key, "has an unterminated ${ in \"" + text + "\"");
+    }
+    const std::string name = text.substr(open + 2, close - open - 2);
+    const char* value = name.empty() ? nullptr : std::getenv(name.c_str());
+    if (value == nullptr) {
+      fail(key, "names the environment variable \"" + name + "\", which is not set");
+    }
+    expanded += text.substr(at, open - at) + value;
+    at = close + 1;
+  }
+  return expanded;
+}
+
+std::string Config::requirePath(const std::string& key) const {
+  if (!has(key)) {
+    failAt(node_, key, "is required");
+  }
+  const std::string value = getPath(key, "");
+  if (value.empty()) {
+    fail(key, "must not be empty");
+  }
+  return value;
+}
+
 std::string Config::getPath(const std::string& key, const std::string& default_value) const {
   if (!has(key)) {
     document_->keys_read.insert(fullKey(key));
     return default_value;
   }
-  const std::string value = getString(key, default_value);
+  const std::string value = getExpandedString(key, default_value);
   if (value.empty()) {
     return value;
   }

@@ -51,7 +51,7 @@ std::string Gx1Settings::check() const {
 
 Gx1Settings Gx1Settings::fromConfig(const Config& section) {
   Gx1Settings s;
-  s.device = section.requireString("device");
+  s.device = section.requirePath("device");
   s.baud = static_cast<int>(section.getInt("baud", s.baud, {1200, 921600}));
   s.mode = section.getChoice("mode", "polled", {"polled", "continuous"}) == "continuous"
                ? Gx1Mode::kContinuous

@@ -18,7 +18,7 @@ std::chrono::milliseconds secondsSetting(const Config& section, const std::strin
 
 HokuyoSettings loadHokuyoSettings(const Config& section) {
   HokuyoSettings s;
-  s.device = section.requireString("device");
+  s.device = section.requirePath("device");
   s.baud = static_cast<int>(section.getInt("baud", s.baud, {1200, 1e7}));
   std::vector<double> default_bauds(s.probe_bauds.begin(), s.probe_bauds.end());
   s.probe_bauds.clear();

@@ -50,7 +50,7 @@ std::string PhidgetEncoderSettings::check() const {
 PhidgetEncoderSettings PhidgetEncoderSettings::fromConfig(const Config& section) {
   PhidgetEncoderSettings s;
   if (section.has("library")) {
-    s.library_names = {section.requireString("library")};
+    s.library_names = {section.getExpandedString("library", "")};
   }
   const double timeout_s = section.getDouble("attach_timeout_s", 2.0, {0.001, 60.0});
   s.attach_timeout = std::chrono::milliseconds(std::llround(timeout_s * 1000.0));

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "device_sensors.hpp"
+#include "mrslam/drivers/device_host_clock.hpp"
 
 namespace mrslam::robot {
 
@@ -111,7 +112,8 @@ const char* sensorStateName(SensorState state) {
 }
 
 DeviceSource::DeviceSource(const DeviceSourceSettings& settings, const std::atomic<bool>& shutdown)
-    : shutdown_(shutdown) {
+    : shutdown_(shutdown),
+      reorder_window_ns_(static_cast<std::int64_t>(std::llround(settings.reorder_window_s * 1e9))) {
   if (settings.laser) {
     sensors_.push_back(std::make_unique<SensorThread>(
         "laser", laserDevice(*settings.laser),
@@ -134,6 +136,10 @@ DeviceSource::DeviceSource(const DeviceSourceSettings& settings, const std::atom
 
 DeviceSource::~DeviceSource() {
   sensors_.clear();  // joins the threads before the queue goes away
+  spdlog::info(
+      "devices: {} samples handed out, {} of them later than the {} s reorder window, {} "
+      "dropped by a full queue",
+      handed_out_, out_of_order_, reorder_window_ns_ * 1e-9, dropped_);
 }
 
 void DeviceSource::push(Sample sample) {
@@ -145,7 +151,13 @@ void DeviceSource::push(Sample sample) {
         spdlog::warn("devices: the pipeline falls behind; {} samples dropped so far", dropped_);
       }
     }
-    queue_.push_back(std::move(sample));
+    // Mostly in order already: look for its place from the back.
+    const Stamp stamp = stampOf(sample);
+    auto place = queue_.end();
+    while (place != queue_.begin() && stamp < stampOf(*std::prev(place))) {
+      --place;
+    }
+    queue_.insert(place, std::move(sample));
   }
   arrived_.notify_one();
 }
@@ -153,14 +165,34 @@ void DeviceSource::push(Sample sample) {
 std::optional<Sample> DeviceSource::next() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (!shutdown_.load()) {
-    if (arrived_.wait_for(lock, kWaitSlice, [this] { return !queue_.empty(); })) {
-      Sample sample = std::move(queue_.front());
-      queue_.pop_front();
-      ++handed_out_;
-      return sample;
+    if (!queue_.empty()) {
+      // The oldest sample leaves once the window has passed over it: anything stamped earlier
+      // that is still on its way would be later than the window.
+      const std::int64_t due_ns = stampOf(queue_.front()).ns + reorder_window_ns_;
+      const std::int64_t wait_ns = due_ns - drivers::device_clock::hostNow().ns;
+      if (wait_ns <= 0) {
+        Sample sample = std::move(queue_.front());
+        queue_.pop_front();
+        const Stamp stamp = stampOf(sample);
+        if (last_handed_out_ && stamp < *last_handed_out_) {
+          ++out_of_order_;
+        }
+        last_handed_out_ = std::max(stamp, last_handed_out_.value_or(stamp));
+        ++handed_out_;
+        return sample;
+      }
+      arrived_.wait_for(
+          lock, std::min<std::chrono::nanoseconds>(std::chrono::nanoseconds(wait_ns), kWaitSlice));
+      continue;
     }
+    arrived_.wait_for(lock, kWaitSlice, [this] { return !queue_.empty(); });
   }
   return std::nullopt;
+}
+
+std::uint64_t DeviceSource::outOfOrderSamples() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return out_of_order_;
 }
 
 std::string DeviceSource::describe() const {

@@ -22,6 +22,8 @@ DeviceSourceSettings loadDevices(const Config& section) {
   devices.replay_log = section.getPath("replay_log", "");
   devices.reopen_period_s =
       section.getDouble("reopen_period_s", devices.reopen_period_s, {0.01, 3600.0});
+  devices.reorder_window_s =
+      section.getDouble("reorder_window_s", devices.reorder_window_s, {0.0, 5.0});
   if (section.has("laser")) {
     devices.laser = drivers::loadHokuyoSettings(section.section("laser"));
     devices.laser_fallback = loadFallback(section.section("laser"));

@@ -31,9 +31,28 @@ int exitCodeOf(int status) {
   return -1;
 }
 
+// This process's environment with `extra` ("NAME=value") replacing variables of the same name.
+std::vector<std::string> mergedEnvironment(const std::vector<std::string>& extra) {
+  std::vector<std::string> merged;
+  const auto nameOf = [](const std::string& entry) { return entry.substr(0, entry.find('=')); };
+  for (char** entry = environ; *entry != nullptr; ++entry) {
+    const std::string text(*entry);
+    bool replaced = false;
+    for (const std::string& added : extra) {
+      replaced = replaced || nameOf(added) == nameOf(text);
+    }
+    if (!replaced) {
+      merged.push_back(text);
+    }
+  }
+  merged.insert(merged.end(), extra.begin(), extra.end());
+  return merged;
+}
+
 }  // namespace
 
-ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::string& log_path)
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::string& log_path,
+                           const std::vector<std::string>& environment)
     : log_path_(log_path) {
   if (argv.empty()) {
     throw std::runtime_error("ChildProcess: no program given");
@@ -54,8 +73,14 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
     args.push_back(const_cast<char*>(arg.c_str()));
   }
   args.push_back(nullptr);
+  std::vector<std::string> variables = mergedEnvironment(environment);
+  std::vector<char*> envp;
+  for (std::string& variable : variables) {
+    envp.push_back(variable.data());
+  }
+  envp.push_back(nullptr);
   const int error =
-      posix_spawn(&pid_, argv.front().c_str(), &actions, nullptr, args.data(), environ);
+      posix_spawn(&pid_, argv.front().c_str(), &actions, nullptr, args.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (error != 0) {
     throw std::runtime_error("cannot start " + argv.front() + ": " + std::strerror(error));

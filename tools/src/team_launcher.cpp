@@ -20,11 +20,16 @@ using Clock = std::chrono::steady_clock;
 
 constexpr double kStopGraceS = 15.0;  // SIGINT → SIGKILL
 
+constexpr double kDevicesReadyTimeoutS = 20.0;  // an emulated robot brings its devices up
+
 struct Agent {
   std::string name;
-  bool is_robot = false;
+  bool is_robot = false;  ///< a robot agent, or an emulated robot's devices
   std::unique_ptr<ChildProcess> process;
   bool reported = false;
+  /// An emulated robot's devices: the agent (index) that reads them, stopped when they end.
+  std::optional<std::size_t> devices_of;
+  bool robot_stopped = false;
 };
 
 std::optional<int> domainOf(const TeamSpec& team, const TeamRunOptions& options) {
@@ -75,7 +80,10 @@ std::vector<std::string> robotArguments(const TeamRobot& robot, const TeamSpec& 
   } else if (!robot.log.empty()) {
     argv.insert(argv.end(), {"--log", robot.log});
   }
-  argv.insert(argv.end(), {"--out", (fs::path(options.out) / "robots_local").string()});
+  const fs::path local = fs::path(options.out) / "robots_local";
+  argv.insert(argv.end(),
+              {"--out", local.string(), "--trajectory-out",
+               (local / ((robot.id.empty() ? robot.name : robot.id) + ".tum")).string()});
   addDomain(argv, domainOf(team, options));
   return argv;
 }
@@ -91,7 +99,49 @@ std::vector<std::string> fusionArguments(const TeamFusion& fusion, const TeamSpe
   return argv;
 }
 
-// Starts every agent (fusion first, so no early map is missed). Throws when one cannot start.
+// What an emulated robot and its agent share: where the devices are and the board's feed.
+std::vector<std::string> deviceEnvironment(const TeamRobot& robot, const TeamRunOptions& options) {
+  const fs::path devices = fs::absolute(fs::path(options.out) / "devices" / robot.name);
+  fs::create_directories(devices);
+  return {"MRSLAM_DEVICE_DIR=" + devices.string(),
+          "MRSLAM_PHIDGET_EMULATOR_FEED=" + (devices / "encoders.feed").string(),
+          "MRSLAM_BIN_DIR=" + fs::absolute(options.bin_dir).string()};
+}
+
+std::vector<std::string> emulatorArguments(const TeamRobot& robot, const TeamRunOptions& options) {
+  std::vector<std::string> argv = {
+      (fs::path(options.bin_dir) / "tools" / "mrslam_emulated_robot").string(),
+      "--robot-config",
+      robot.config,
+      "--source-config",
+      robot.emulate,
+      "--truth-out",
+      (fs::path(options.out) / "devices" / robot.name / "truth.tum").string()};
+  if (!robot.emulate_log.empty()) {
+    argv.insert(argv.end(), {"--log", robot.emulate_log});
+  }
+  if (robot.emulate_duration_s > 0.0) {
+    argv.insert(argv.end(), {"--duration", std::to_string(robot.emulate_duration_s)});
+  }
+  return argv;
+}
+
+// Waits until the emulated robot says its devices are up. Throws when it ends or takes too long.
+void waitForDevices(ChildProcess& emulator, const std::string& name) {
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                         std::chrono::duration<double>(kDevicesReadyTimeoutS));
+  while (tailOfFile(emulator.logPath(), 50).find("devices ready") == std::string::npos) {
+    if (emulator.poll() || Clock::now() > deadline) {
+      throw std::runtime_error("the emulated devices of " + name +
+                               " did not come up: " + tailOfFile(emulator.logPath(), 5));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+}
+
+// Starts every agent (fusion first, so no early map is missed); an emulated robot's devices
+// before the agent that reads them. Throws when one cannot start.
 std::vector<Agent> startAgents(const TeamSpec& team, const TeamRunOptions& options,
                                const std::vector<std::string>& segments) {
   const fs::path logs = fs::path(options.out) / "logs";
@@ -99,14 +149,39 @@ std::vector<Agent> startAgents(const TeamSpec& team, const TeamRunOptions& optio
   for (const TeamFusion& fusion : team.fusion) {
     agents.push_back({fusion.name, false,
                       std::make_unique<ChildProcess>(fusionArguments(fusion, team, options),
-                                                     (logs / (fusion.name + ".log")).string())});
+                                                     (logs / (fusion.name + ".log")).string()),
+                      false, std::nullopt, false});
   }
   for (const TeamRobot& robot : team.robots) {
-    agents.push_back({robot.name, true,
-                      std::make_unique<ChildProcess>(robotArguments(robot, team, options, segments),
-                                                     (logs / (robot.name + ".log")).string())});
+    std::vector<std::string> environment;
+    if (!robot.emulate.empty()) {
+      environment = deviceEnvironment(robot, options);
+      auto emulator = std::make_unique<ChildProcess>(
+          emulatorArguments(robot, options), (logs / (robot.name + ".devices.log")).string(),
+          environment);
+      waitForDevices(*emulator, robot.name);
+      agents.push_back(
+          {robot.name + " devices", true, std::move(emulator), false, agents.size() + 1, false});
+    }
+    agents.push_back(
+        {robot.name, true,
+         std::make_unique<ChildProcess>(robotArguments(robot, team, options, segments),
+                                        (logs / (robot.name + ".log")).string(), environment),
+         false, std::nullopt, false});
   }
   return agents;
+}
+
+// A robot on emulated devices runs until its devices end: then it is asked to finish.
+void stopRobotsWhoseDevicesEnded(std::vector<Agent>& agents) {
+  for (Agent& devices : agents) {
+    if (devices.devices_of && !devices.robot_stopped && devices.process->poll()) {
+      Agent& robot = agents.at(*devices.devices_of);
+      spdlog::info("team: the devices of {} ended; asking it to finish", robot.name);
+      robot.process->signal(SIGINT);
+      devices.robot_stopped = true;
+    }
+  }
 }
 
 // Logs each agent's end once; returns the TeamExit bits of the agents that failed.
@@ -157,6 +232,7 @@ int watch(std::vector<Agent>& agents, const TeamSpec& team, const TeamRunOptions
   std::optional<Clock::time_point> robots_done;
   while (!allEnded(agents, false)) {
     reportEnded(agents);
+    stopRobotsWhoseDevicesEnded(agents);
     const double elapsed_s = std::chrono::duration<double>(Clock::now() - start).count();
     if (shutdown.load()) {
       spdlog::info("team: stopping every agent");

@@ -34,6 +34,16 @@ TeamRobot readRobot(const Config& item, const TeamSpec& team) {
       item.fail("segment", "give a log or a segment, not both");
     }
   }
+  robot.emulate = item.getPath("emulate", "");
+  robot.emulate_log = item.getPath("emulate_log", "");
+  robot.emulate_duration_s = item.getDouble("emulate_duration_s", 0.0, {0.0, 1e6});
+  if (robot.emulate.empty() && (!robot.emulate_log.empty() || robot.emulate_duration_s > 0.0)) {
+    item.fail(robot.emulate_log.empty() ? "emulate_duration_s" : "emulate_log",
+              "needs `emulate:` (the config whose source the devices play)");
+  }
+  if (!robot.emulate.empty() && (robot.segment || !robot.log.empty())) {
+    item.fail("emulate", "a robot on emulated devices replays no log or segment itself");
+  }
   robot.name = robot.id.empty() ? stemOf(robot.config) : robot.id;
   return robot;
 }

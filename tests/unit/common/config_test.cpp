@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <functional>
 
 namespace mrslam {
@@ -100,6 +101,27 @@ TEST(ConfigTest, RelativePathsAreTakenFromTheConfigFolder) {
   EXPECT_EQ(config.getPath("log", ""), "/etc/data/a.log");
   EXPECT_EQ(config.getPath("abs", ""), "/tmp/x");
   EXPECT_EQ(config.getPath("absent", "relative/default.xml"), "relative/default.xml");
+}
+
+TEST(ConfigTest, EnvironmentVariablesExpandInPaths) {
+  ::setenv("MRSLAM_TEST_DEVICE_DIR", "/run/robot7", 1);
+  ::unsetenv("MRSLAM_TEST_UNSET");
+  const Config config = Config::loadString(
+      "laser: ${MRSLAM_TEST_DEVICE_DIR}/laser\nrel: ${MRSLAM_TEST_DEVICE_DIR}x/../imu\n"
+      "lib: lib${MRSLAM_TEST_DEVICE_DIR}.so\nmissing: ${MRSLAM_TEST_UNSET}/a\nopen: ${ab\n"
+      "empty: ''\n",
+      "/etc/mrslam/r.yaml");
+  EXPECT_EQ(config.requirePath("laser"), "/run/robot7/laser");
+  EXPECT_EQ(config.getPath("rel", ""), "/run/robot7x/../imu");
+  EXPECT_EQ(config.getExpandedString("lib", ""), "lib/run/robot7.so");
+  EXPECT_EQ(config.getExpandedString("absent", "libphidget22.so"), "libphidget22.so");
+  EXPECT_EQ(errorOf([&] { config.requirePath("missing"); }),
+            "/etc/mrslam/r.yaml:4: missing: names the environment variable \"MRSLAM_TEST_UNSET\", "
+            "which is "
+            "not set");
+  EXPECT_THAT(errorOf([&] { config.getPath("open", ""); }), HasSubstr("unterminated"));
+  EXPECT_THAT(errorOf([&] { config.requirePath("empty"); }), HasSubstr("must not be empty"));
+  EXPECT_THAT(errorOf([&] { config.requirePath("nothing"); }), HasSubstr("is required"));
 }
 
 }  // namespace

@@ -32,20 +32,20 @@ void find(void* library, const char* name, Function& function) {
 class PhidgetEncodersTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    ::unsetenv("MRSLAM_PHIDGET_STANDIN_ATTACH");
-    ::unsetenv("MRSLAM_PHIDGET_STANDIN_SERIAL");
-    library_ = ::dlopen(MRSLAM_PHIDGET_STANDIN, RTLD_NOW | RTLD_LOCAL);
+    ::unsetenv("MRSLAM_PHIDGET_EMULATOR_ATTACH");
+    ::unsetenv("MRSLAM_PHIDGET_EMULATOR_SERIAL");
+    library_ = ::dlopen(MRSLAM_PHIDGET_EMULATOR, RTLD_NOW | RTLD_LOCAL);
     ASSERT_NE(library_, nullptr) << ::dlerror();
-    find(library_, "mrslam_standin_move", hooks_.move);
-    find(library_, "mrslam_standin_live_handles", hooks_.live_handles);
-    find(library_, "mrslam_standin_attached_channels", hooks_.attached_channels);
-    find(library_, "mrslam_standin_data_interval", hooks_.data_interval);
-    settings_.library_names = {MRSLAM_PHIDGET_STANDIN};
+    find(library_, "mrslam_phidget_emulator_move", hooks_.move);
+    find(library_, "mrslam_phidget_emulator_live_handles", hooks_.live_handles);
+    find(library_, "mrslam_phidget_emulator_attached_channels", hooks_.attached_channels);
+    find(library_, "mrslam_phidget_emulator_data_interval", hooks_.data_interval);
+    settings_.library_names = {MRSLAM_PHIDGET_EMULATOR};
     settings_.left = {-1, -1, 0, 1};
     settings_.right = {12345, -1, 1, -1};  // mounted mirrored: forward counts down
   }
   void TearDown() override {
-    ::unsetenv("MRSLAM_PHIDGET_STANDIN_ATTACH");
+    ::unsetenv("MRSLAM_PHIDGET_EMULATOR_ATTACH");
     if (library_ != nullptr) {
       ::dlclose(library_);
     }
@@ -68,7 +68,7 @@ TEST_F(PhidgetEncodersTest, OpensOneAttachedHandlePerWheel) {
   EXPECT_EQ(hooks_.attached_channels(), 2);
   EXPECT_EQ(hooks_.live_handles(), 2);
   EXPECT_EQ(hooks_.data_interval(0), 8u);  // the data interval setting reached the board
-  EXPECT_EQ(encoders->libraryName(), MRSLAM_PHIDGET_STANDIN);
+  EXPECT_EQ(encoders->libraryName(), MRSLAM_PHIDGET_EMULATOR);
   EXPECT_FALSE(encoders->poll());  // nothing moved yet
 }
 
@@ -143,7 +143,7 @@ TEST_F(PhidgetEncodersTest, DestructionClosesAndDeletesTheHandles) {
 }
 
 TEST_F(PhidgetEncodersTest, NoDeviceAttachingIsAClearFailure) {
-  ::setenv("MRSLAM_PHIDGET_STANDIN_ATTACH", "fail", 1);
+  ::setenv("MRSLAM_PHIDGET_EMULATOR_ATTACH", "fail", 1);
   auto opened = PhidgetEncoders::open(settings_);
   ASSERT_FALSE(opened.ok());
   EXPECT_NE(opened.reason().find("left encoder (serial any, hub port any, channel 0)"),
@@ -173,7 +173,7 @@ TEST_F(PhidgetEncodersTest, AMissingLibraryIsAClearFailure) {
 }
 
 TEST_F(PhidgetEncodersTest, ALibraryWithoutAFunctionIsAClearFailure) {
-  settings_.library_names = {MRSLAM_PHIDGET_STANDIN_INCOMPLETE};
+  settings_.library_names = {MRSLAM_PHIDGET_EMULATOR_INCOMPLETE};
   auto opened = PhidgetEncoders::open(settings_);
   ASSERT_FALSE(opened.ok());
   EXPECT_NE(opened.reason().find("lacks PhidgetEncoder_getPosition"), std::string::npos)
@@ -181,10 +181,10 @@ TEST_F(PhidgetEncodersTest, ALibraryWithoutAFunctionIsAClearFailure) {
 }
 
 TEST_F(PhidgetEncodersTest, TheNextLibraryNameIsTriedWhenOneFails) {
-  settings_.library_names = {"/nonexistent/libphidget22.so.0", MRSLAM_PHIDGET_STANDIN};
+  settings_.library_names = {"/nonexistent/libphidget22.so.0", MRSLAM_PHIDGET_EMULATOR};
   auto encoders = openOrFail();
   ASSERT_TRUE(encoders);
-  EXPECT_EQ(encoders->libraryName(), MRSLAM_PHIDGET_STANDIN);
+  EXPECT_EQ(encoders->libraryName(), MRSLAM_PHIDGET_EMULATOR);
 }
 
 TEST(PhidgetEncoderSettingsTest, BadSettingsAreRefusedBeforeLoading) {

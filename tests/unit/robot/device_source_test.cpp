@@ -9,9 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <fstream>
 #include <functional>
 
+#include "mrslam/drivers/device_host_clock.hpp"
 #include "mrslam/drivers/gx1_emulator.hpp"
 #include "mrslam/drivers/hokuyo_emulator.hpp"
 #include "mrslam/drivers/mrslam_log.hpp"
@@ -203,6 +206,41 @@ TEST_F(DeviceSourceTest, WithoutThePhidgetLibraryTheTicksComeFromReplayContinuou
   const SensorHealth encoders = healthOf(source, "encoders");
   EXPECT_EQ(encoders.state, SensorState::kFallback);
   EXPECT_NE(encoders.last_error.find("hidget"), std::string::npos) << encoders.last_error;
+}
+
+TEST_F(DeviceSourceTest, SamplesFromDifferentDevicesLeaveInTimeStampOrder) {
+  DeviceSourceSettings settings;
+  settings.laser = laserSettings((folder_ / "no-such-device").string());
+  settings.laser_fallback = DeviceFallback::kNone;
+  settings.reorder_window_s = 0.2;
+  DeviceSource source(settings, shutdown_);
+  const std::int64_t now_ns = drivers::device_clock::hostNow().ns;
+  const auto imuAt = [&](std::int64_t ago_ms) {
+    ImuSample sample;
+    sample.stamp = Stamp::fromNanoseconds(now_ns - ago_ms * 1'000'000);
+    return Sample(sample);
+  };
+  // A scan arrives first; IMU samples stamped before it arrive after it, within the window.
+  LaserScan scan;
+  scan.stamp = Stamp::fromNanoseconds(now_ns - 50'000'000);
+  source.push(scan);
+  source.push(imuAt(80));
+  source.push(imuAt(60));
+  source.push(imuAt(40));
+  std::vector<std::int64_t> stamps;
+  for (int i = 0; i < 4; ++i) {
+    const std::optional<Sample> sample = source.next();
+    ASSERT_TRUE(sample);
+    stamps.push_back(stampOf(*sample).ns);
+  }
+  EXPECT_TRUE(std::is_sorted(stamps.begin(), stamps.end()));
+  EXPECT_EQ(stamps[2], now_ns - 50'000'000);  // the scan after the two IMU samples before it
+  // The window had passed over each sample when it left.
+  EXPECT_GE(drivers::device_clock::hostNow().ns, stamps.back() + 200'000'000);
+  // One stamped before what already left is handed out, and counted.
+  source.push(imuAt(500));
+  ASSERT_TRUE(source.next());
+  EXPECT_EQ(source.outOfOrderSamples(), 1u);
 }
 
 TEST(DeviceSourceConfigTest, NoDeviceConfiguredIsAnError) {

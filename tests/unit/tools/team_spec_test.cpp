@@ -55,6 +55,27 @@ TEST(TeamSpecTest, ReadsRobotsFusionAndTheSplitWithPathsFromTheFilesFolder) {
   EXPECT_DOUBLE_EQ(team.final_grace_s, 5.0);
 }
 
+TEST(TeamSpecTest, ARobotOnEmulatedDevicesNamesWhatTheyPlay) {
+  const std::string path = writeTeam(
+      "robots:\n  - config: emulated_robot.yaml\n    id: robot1\n    emulate: sim_robot1.yaml\n"
+      "    emulate_log: logs/intel.log\n    emulate_duration_s: 40\n"
+      "  - config: sim_robot2.yaml\n");
+  const TeamSpec team = loadTeamSpec(path);
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  ASSERT_EQ(team.robots.size(), 2u);
+  EXPECT_EQ(std::filesystem::path(team.robots[0].emulate), folder / "sim_robot1.yaml");
+  EXPECT_EQ(std::filesystem::path(team.robots[0].emulate_log), folder / "logs/intel.log");
+  EXPECT_DOUBLE_EQ(team.robots[0].emulate_duration_s, 40.0);
+  EXPECT_TRUE(team.robots[1].emulate.empty());
+  EXPECT_THAT(loadError("robots:\n  - config: a.yaml\n    emulate_log: x.log\n"),
+              HasSubstr("team.yaml:3: robots[0].emulate_log: needs `emulate:`"));
+  EXPECT_THAT(loadError("robots:\n  - config: a.yaml\n    emulate: s.yaml\n    log: x.log\n"),
+              HasSubstr("robots[0].emulate: a robot on emulated devices replays no log"));
+  EXPECT_THAT(loadError("robots:\n  - config: a.yaml\n    emulate: s.yaml\n"
+                        "    emulate_duration_s: -1\n"),
+              HasSubstr("robots[0].emulate_duration_s: -1 is out of range"));
+}
+
 TEST(TeamSpecTest, MistakesNameFileLineAndKey) {
   EXPECT_THAT(loadError("robots:\n  - config: a.yaml\n    segment: 1\n"),
               HasSubstr("team.yaml:3: robots[0].segment: needs a `split:` section"));

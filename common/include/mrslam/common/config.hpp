@@ -52,8 +52,13 @@ class Config {
   std::vector<double> getDoubles(const std::string& key, const std::vector<double>& default_value,
                                  std::size_t size = 0, Range range = {}) const;
   /// A file path; a relative path in the file is taken relative to the config file's folder
-  /// (the default is returned as given).
+  /// (the default is returned as given). `${NAME}` in the value is replaced by the environment
+  /// variable NAME first (an unset NAME is an error naming it).
   std::string getPath(const std::string& key, const std::string& default_value) const;
+  /// A required path (a device, a file), read as getPath reads it.
+  std::string requirePath(const std::string& key) const;
+  /// A string with `${NAME}` replaced by the environment variable NAME (e.g. a library name).
+  std::string getExpandedString(const std::string& key, const std::string& default_value) const;
 
   /// A nested map; a missing key gives an empty section (every value takes its default).
   Config section(const std::string& key) const;

@@ -34,6 +34,9 @@ struct DeviceSourceSettings {
   DeviceFallback encoders_fallback = DeviceFallback::kReplay;
   std::string replay_log;        ///< the fallback's log (any format replay reads); empty: no replay
   double reopen_period_s = 2.0;  ///< how often an absent Phidget library/device is tried again
+  /// Samples are held this long (host clock) and handed out in time-stamp order: a sample from
+  /// one device that arrives after a later-stamped one from another is still in order.
+  double reorder_window_s = 0.05;
 };
 
 /// Where a sensor's samples come from now.
@@ -72,6 +75,8 @@ class DeviceSource final : public drivers::SampleSource {
   std::vector<SensorHealth> health() const;
   /// Samples dropped because the pipeline fell 4096 samples behind (oldest first).
   std::uint64_t droppedSamples() const;
+  /// Samples stamped before one already handed out (they arrived later than the reorder window).
+  std::uint64_t outOfOrderSamples() const;
 
   /// A sample from a sensor thread (thread-safe).
   void push(Sample sample);
@@ -81,8 +86,11 @@ class DeviceSource final : public drivers::SampleSource {
   std::vector<std::unique_ptr<SensorThread>> sensors_;
   mutable std::mutex mutex_;
   std::condition_variable arrived_;
-  std::deque<Sample> queue_;
+  std::deque<Sample> queue_;  ///< in time-stamp order
+  std::int64_t reorder_window_ns_ = 0;
   std::uint64_t handed_out_ = 0;
+  std::uint64_t out_of_order_ = 0;
+  std::optional<Stamp> last_handed_out_;
   std::uint64_t dropped_ = 0;
 };
 

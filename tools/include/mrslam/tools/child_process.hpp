@@ -12,9 +12,11 @@ namespace mrslam::tools {
 
 class ChildProcess {
  public:
-  /// Starts argv[0] (a path) with its arguments; stdout and stderr go to `log_path`.
+  /// Starts argv[0] (a path) with its arguments; stdout and stderr go to `log_path`. The child
+  /// gets this process's environment with `environment` ("NAME=value") added or replacing.
   /// Throws std::runtime_error when the program cannot be started.
-  ChildProcess(const std::vector<std::string>& argv, const std::string& log_path);
+  ChildProcess(const std::vector<std::string>& argv, const std::string& log_path,
+               const std::vector<std::string>& environment = {});
   /// Kills the child (SIGKILL) if it still runs, and reaps it.
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;

@@ -10,6 +10,11 @@
 //     - config: intel_team_robot.yaml   # relative paths: from the team file's folder
 //       id: robot1                      # optional: overrides the config's robot_id
 //       segment: 1                      # or  log: FILE  (or neither: the config's own source)
+//     - config: emulated_robot.yaml     # an agent on its devices (source: devices) ...
+//       id: robot2
+//       emulate: sim_robot2.yaml        # ... emulated: that config's source played through them
+//       emulate_log: FILE               # optional: a log played instead of that source
+//       emulate_duration_s: 40          # optional: stop the emulated robot after this long
 //   fusion:
 //     - config: intel_team_fusion.yaml
 //   final_grace_s: 120            # after the last robot ended, fusion agents get this long
@@ -25,7 +30,12 @@ struct TeamRobot {
   std::string id;              ///< empty: the config's robot_id
   std::string log;             ///< a log to replay instead of the config's source
   std::optional<int> segment;  ///< 1-based segment of the team's split log
-  std::string name;            ///< the agent's name in logs (id, or the config's stem)
+  /// Emulated devices: a config whose source mrslam_emulated_robot plays through the devices
+  /// the robot config names (each robot gets its own $MRSLAM_DEVICE_DIR); empty: none.
+  std::string emulate;
+  std::string emulate_log;          ///< a log the emulated robot plays instead
+  double emulate_duration_s = 0.0;  ///< 0: the whole source
+  std::string name;                 ///< the agent's name in logs (id, or the config's stem)
 };
 
 struct TeamFusion {
