@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "fusion_loop.hpp"
+#include "mrslam/common/dds_settings.hpp"
 #include "mrslam/common/shutdown.hpp"
 #include "mrslam/common/version.hpp"
 
@@ -17,11 +18,16 @@ int main(int argc, char** argv) {
   int domain = -1;
   std::string out;
   double max_runtime = -1.0;
+  std::string discovery_server;
   std::string log_level = "info";
   app.add_option("--config", config_path, "fusion config YAML")->required();
   app.add_option("--domain", domain, "DDS domain id (overrides the config)")
       ->check(CLI::Range(0, 232));
   app.add_option("--out", out, "output folder (overrides the config)");
+  app.add_option("--discovery-server", discovery_server,
+                 "IPv4:port of a Discovery Server to discover through (overrides the config)")
+      ->check(
+          [](const std::string& address) { return mrslam::checkDiscoveryServerAddress(address); });
   app.add_option("--max-runtime", max_runtime, "give up after this many seconds (0: never)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");
   app.set_version_flag("--version", mrslam::versionLine("fusion_agent"));
@@ -34,6 +40,9 @@ int main(int argc, char** argv) {
     }
     if (!out.empty()) {
       config.output_folder = out;
+    }
+    if (!discovery_server.empty()) {
+      config.dds.discovery_server = discovery_server;
     }
     if (max_runtime >= 0.0) {
       config.max_runtime_s = max_runtime;

@@ -2,8 +2,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastrtps/utils/IPLocator.h>
 #include <chrono>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/qos/PublisherQos.hpp>
 #include <fastdds/dds/subscriber/qos/SubscriberQos.hpp>
 #include <fastdds/dds/topic/qos/TopicQos.hpp>
@@ -38,14 +41,46 @@ void loadProfilesOnce(const std::string& path) {
   loaded.insert(key);
 }
 
+// The participant as a client of the Discovery Server at `address` (IPv4:port) with id `id`.
+void makeDiscoveryClient(eprosima::fastdds::dds::DomainParticipantQos& qos,
+                         const std::string& address, int id) {
+  namespace rtps = eprosima::fastrtps::rtps;
+  const std::string problem = checkDiscoveryServerAddress(address);
+  if (!problem.empty()) {
+    throw DdsError("discovery server: " + problem);
+  }
+  const std::size_t colon = address.rfind(':');
+  rtps::Locator_t locator;
+  rtps::IPLocator::setIPv4(locator, address.substr(0, colon));
+  locator.port = static_cast<std::uint32_t>(std::stoi(address.substr(colon + 1)));
+  rtps::RemoteServerAttributes server;
+  server.metatrafficUnicastLocatorList.push_back(locator);
+  if (!eprosima::fastdds::rtps::get_server_client_default_guidPrefix(id, server.guidPrefix)) {
+    throw DdsError("discovery server: no GUID prefix for server id " + std::to_string(id));
+  }
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  discovery.discoveryProtocol = rtps::DiscoveryProtocol_t::CLIENT;
+  discovery.m_DiscoveryServers.push_back(server);
+}
+
 }  // namespace
 
 Participant::Participant(const DdsSettings& settings, const std::string& name)
     : domain_id_(settings.domain_id) {
   loadProfilesOnce(settings.profiles_file);
   auto* factory = DomainParticipantFactory::get_instance();
-  participant_ =
-      factory->create_participant_with_profile(settings.domain_id, settings.participant_profile);
+  eprosima::fastdds::dds::DomainParticipantQos qos;
+  if (factory->get_participant_qos_from_profile(settings.participant_profile, qos) !=
+      ReturnCode_t::RETCODE_OK) {
+    throw DdsError("no participant profile '" + settings.participant_profile + "' in " +
+                   settings.profiles_file);
+  }
+  if (!settings.discovery_server.empty()) {
+    makeDiscoveryClient(qos, settings.discovery_server, settings.discovery_server_id);
+    spdlog::info("{}: discovery through the server at {} (id {})", name, settings.discovery_server,
+                 settings.discovery_server_id);
+  }
+  participant_ = factory->create_participant(settings.domain_id, qos);
   if (participant_ == nullptr) {
     throw DdsError("cannot create DDS participant '" + name + "' on domain " +
                    std::to_string(settings.domain_id) + " with profile '" +

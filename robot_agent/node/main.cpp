@@ -36,6 +36,7 @@ struct Options {
   std::string config_dir = "config";
   std::string robot_id;
   int domain = -1;
+  std::string discovery_server;
   double speed = -1.0;
   std::string log;
   std::string positional_log;
@@ -160,6 +161,9 @@ RobotConfig loadConfig(Options& options) {
   if (options.domain >= 0) {
     config.dds.domain_id = options.domain;
   }
+  if (!options.discovery_server.empty()) {
+    config.dds.discovery_server = options.discovery_server;
+  }
   if (!options.robot_id.empty()) {
     if (!mrslam::isValidRobotId(options.robot_id)) {
       throw std::invalid_argument("--robot-id: '" + options.robot_id +
@@ -213,6 +217,10 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--domain", options.domain, "DDS domain id (overrides the config)")
       ->check(CLI::Range(0, 232));
+  app.add_option("--discovery-server", options.discovery_server,
+                 "IPv4:port of a Discovery Server to discover through (overrides the config)")
+      ->check(
+          [](const std::string& address) { return mrslam::checkDiscoveryServerAddress(address); });
   app.add_option("--robot-id", options.robot_id,
                  "the robot's id on DDS and in file names (overrides the config)");
   app.add_option(

@@ -3,8 +3,13 @@
 
 #include <unistd.h>
 
+#include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "mrslam/tools/child_process.hpp"
@@ -37,6 +42,31 @@ inline int finish(tools::ChildProcess& agent, double timeout_s) {
 /// The end of an agent's log, for failure messages.
 inline std::string logOf(const tools::ChildProcess& agent) {
   return agent.logPath() + ":\n" + tools::tailOfFile(agent.logPath(), 30);
+}
+
+/// Waits (bounded: `timeout_s`) until the file holds `text` `times` times.
+inline bool waitForLog(const std::filesystem::path& path, const std::string& text, int times = 1,
+                       double timeout_s = 60.0) {
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(timeout_s));
+  while (true) {
+    std::ifstream file(path);
+    std::stringstream content;
+    content << file.rdbuf();
+    const std::string log = content.str();
+    int found = 0;
+    for (std::size_t at = log.find(text); at != std::string::npos; at = log.find(text, at + 1)) {
+      ++found;
+    }
+    if (found >= times) {
+      return true;
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      return false;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
 }
 
 }  // namespace mrslam::test

@@ -16,29 +16,6 @@
 namespace mrslam::test {
 namespace {
 
-std::string contentOf(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-// Waits (bounded: 60 s) until the file holds `text` `times` times.
-bool waitForLog(const std::filesystem::path& path, const std::string& text, int times = 1) {
-  for (int i = 0; i < 1200; ++i) {
-    const std::string log = contentOf(path);
-    int found = 0;
-    for (std::size_t at = log.find(text); at != std::string::npos; at = log.find(text, at + 1)) {
-      ++found;
-    }
-    if (found >= times) {
-      return true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return false;
-}
-
 TEST(StaleRobotTest, AKilledRobotIsMarkedStaleKeptInTheMapAndTakenBackWhenRestarted) {
   const auto out = scratchFolder("out");
   const std::string domain = std::to_string(privateDomain());

@@ -21,6 +21,7 @@ using Clock = std::chrono::steady_clock;
 constexpr double kStopGraceS = 15.0;  // SIGINT → SIGKILL
 
 constexpr double kDevicesReadyTimeoutS = 20.0;  // an emulated robot brings its devices up
+constexpr const char* kDiscoveryServerProgram = "/usr/bin/fast-discovery-server";
 
 struct Agent {
   std::string name;
@@ -30,6 +31,7 @@ struct Agent {
   /// An emulated robot's devices: the agent (index) that reads them, stopped when they end.
   std::optional<std::size_t> devices_of;
   bool robot_stopped = false;
+  bool service = false;  ///< runs for the others (the Discovery Server): stopped when they end
 };
 
 std::optional<int> domainOf(const TeamSpec& team, const TeamRunOptions& options) {
@@ -39,6 +41,16 @@ std::optional<int> domainOf(const TeamSpec& team, const TeamRunOptions& options)
 void addDomain(std::vector<std::string>& argv, const std::optional<int>& domain) {
   if (domain) {
     argv.insert(argv.end(), {"--domain", std::to_string(*domain)});
+  }
+}
+
+// Every agent's DDS options: the domain, and the team's Discovery Server when it has one.
+void addDds(std::vector<std::string>& argv, const TeamSpec& team, const TeamRunOptions& options) {
+  addDomain(argv, domainOf(team, options));
+  if (team.discovery_server) {
+    argv.insert(argv.end(),
+                {"--discovery-server", team.discovery_server->address + ":" +
+                                           std::to_string(team.discovery_server->port)});
   }
 }
 
@@ -84,7 +96,7 @@ std::vector<std::string> robotArguments(const TeamRobot& robot, const TeamSpec& 
   argv.insert(argv.end(),
               {"--out", local.string(), "--trajectory-out",
                (local / ((robot.id.empty() ? robot.name : robot.id) + ".tum")).string()});
-  addDomain(argv, domainOf(team, options));
+  addDds(argv, team, options);
   return argv;
 }
 
@@ -95,7 +107,7 @@ std::vector<std::string> fusionArguments(const TeamFusion& fusion, const TeamSpe
   std::vector<std::string> argv = {
       (fs::path(options.bin_dir) / "fusion_agent" / "fusion_agent").string(), "--config",
       fusion.config, "--out", out.string()};
-  addDomain(argv, domainOf(team, options));
+  addDds(argv, team, options);
   return argv;
 }
 
@@ -146,11 +158,23 @@ std::vector<Agent> startAgents(const TeamSpec& team, const TeamRunOptions& optio
                                const std::vector<std::string>& segments) {
   const fs::path logs = fs::path(options.out) / "logs";
   std::vector<Agent> agents;
+  if (team.discovery_server) {
+    // fast-discovery-server (Debian's fastdds-tools) with id 0: its GUID prefix is the one the
+    // agents' clients assume (dds.discovery_server_id 0).
+    const TeamDiscoveryServer& server = *team.discovery_server;
+    agents.push_back(
+        {"discovery_server", false,
+         std::make_unique<ChildProcess>(
+             std::vector<std::string>{kDiscoveryServerProgram, "-i", "0", "-l", server.address,
+                                      "-p", std::to_string(server.port)},
+             (logs / "discovery_server.log").string()),
+         false, std::nullopt, false, true});
+  }
   for (const TeamFusion& fusion : team.fusion) {
     agents.push_back({fusion.name, false,
                       std::make_unique<ChildProcess>(fusionArguments(fusion, team, options),
                                                      (logs / (fusion.name + ".log")).string()),
-                      false, std::nullopt, false});
+                      false, std::nullopt, false, false});
   }
   for (const TeamRobot& robot : team.robots) {
     std::vector<std::string> environment;
@@ -160,14 +184,14 @@ std::vector<Agent> startAgents(const TeamSpec& team, const TeamRunOptions& optio
           emulatorArguments(robot, options), (logs / (robot.name + ".devices.log")).string(),
           environment);
       waitForDevices(*emulator, robot.name);
-      agents.push_back(
-          {robot.name + " devices", true, std::move(emulator), false, agents.size() + 1, false});
+      agents.push_back({robot.name + " devices", true, std::move(emulator), false,
+                        agents.size() + 1, false, false});
     }
     agents.push_back(
         {robot.name, true,
          std::make_unique<ChildProcess>(robotArguments(robot, team, options, segments),
                                         (logs / (robot.name + ".log")).string(), environment),
-         false, std::nullopt, false});
+         false, std::nullopt, false, false});
   }
   return agents;
 }
@@ -192,7 +216,7 @@ int reportEnded(std::vector<Agent>& agents) {
     if (!code) {
       continue;
     }
-    if (*code != 0) {
+    if (*code != 0 && !agent.service) {
       failed |= agent.is_robot ? kTeamRobotFailed : kTeamFusionFailed;
     }
     if (!agent.reported) {
@@ -210,7 +234,7 @@ int reportEnded(std::vector<Agent>& agents) {
 
 bool allEnded(std::vector<Agent>& agents, bool robots_only) {
   for (Agent& agent : agents) {
-    if ((agent.is_robot || !robots_only) && !agent.process->poll()) {
+    if (!agent.service && (agent.is_robot || !robots_only) && !agent.process->poll()) {
       return false;
     }
   }
@@ -256,6 +280,7 @@ int watch(std::vector<Agent>& agents, const TeamSpec& team, const TeamRunOptions
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
+  stopAll(agents);  // the services (those still running)
   return reportEnded(agents);
 }
 

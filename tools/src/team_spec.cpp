@@ -1,5 +1,7 @@
 #include "mrslam/tools/team_spec.hpp"
 
+#include "mrslam/common/dds_settings.hpp"
+
 #include <filesystem>
 #include <set>
 
@@ -79,6 +81,17 @@ TeamSpec loadTeamSpec(const std::string& path) {
     }
     settings.segments = static_cast<int>(split.requireInt("segments", {1.0, 64.0}));
     team.split = settings;
+  }
+  if (config.has("discovery_server")) {
+    const Config server = config.section("discovery_server");
+    TeamDiscoveryServer settings;
+    settings.address = server.getString("address", settings.address);
+    settings.port = static_cast<int>(server.getInt("port", settings.port, {1.0, 65535.0}));
+    const std::string problem = checkDiscoveryServerAddress(settings.address + ":1");
+    if (!problem.empty()) {
+      server.fail("address", problem);
+    }
+    team.discovery_server = settings;
   }
   for (const Config& item : config.sectionList("robots")) {
     team.robots.push_back(readRobot(item, team));

@@ -76,6 +76,25 @@ TEST(TeamSpecTest, ARobotOnEmulatedDevicesNamesWhatTheyPlay) {
               HasSubstr("robots[0].emulate_duration_s: -1 is out of range"));
 }
 
+TEST(TeamSpecTest, ATeamMayBringItsDiscoveryServer) {
+  const TeamSpec team =
+      loadTeamSpec(writeTeam("discovery_server:\n  address: 10.0.0.5\n  port: 12000\nrobots:\n"
+                             "  - config: a.yaml\n"));
+  ASSERT_TRUE(team.discovery_server.has_value());
+  EXPECT_EQ(team.discovery_server->address, "10.0.0.5");
+  EXPECT_EQ(team.discovery_server->port, 12000);
+  const TeamSpec defaults =
+      loadTeamSpec(writeTeam("discovery_server: {}\nrobots:\n  - config: a.yaml\n"));
+  ASSERT_TRUE(defaults.discovery_server.has_value());
+  EXPECT_EQ(defaults.discovery_server->address, "127.0.0.1");
+  EXPECT_EQ(defaults.discovery_server->port, 11811);
+  EXPECT_FALSE(loadTeamSpec(writeTeam("robots:\n  - config: a.yaml\n")).discovery_server);
+  EXPECT_THAT(loadError("discovery_server:\n  address: host\nrobots:\n  - config: a.yaml\n"),
+              HasSubstr("team.yaml:2: discovery_server.address: 'host' is not an IPv4 address"));
+  EXPECT_THAT(loadError("discovery_server:\n  port: 0\nrobots:\n  - config: a.yaml\n"),
+              HasSubstr("discovery_server.port: 0 is out of range"));
+}
+
 TEST(TeamSpecTest, MistakesNameFileLineAndKey) {
   EXPECT_THAT(loadError("robots:\n  - config: a.yaml\n    segment: 1\n"),
               HasSubstr("team.yaml:3: robots[0].segment: needs a `split:` section"));

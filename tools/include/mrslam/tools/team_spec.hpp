@@ -18,6 +18,9 @@
 //   fusion:
 //     - config: intel_team_fusion.yaml
 //   final_grace_s: 120            # after the last robot ended, fusion agents get this long
+//   discovery_server:             # optional: start a Discovery Server (fast-discovery-server,
+//     address: 127.0.0.1          #   id 0) listening here; every agent discovers through it
+//     port: 11811
 
 #include <optional>
 #include <string>
@@ -48,8 +51,14 @@ struct TeamSplit {
   int segments = 0;
 };
 
+struct TeamDiscoveryServer {
+  std::string address = "127.0.0.1";  ///< IPv4 the server listens on (a LAN address for hosts)
+  int port = 11811;
+};
+
 struct TeamSpec {
   std::optional<int> domain_id;
+  std::optional<TeamDiscoveryServer> discovery_server;
   std::optional<TeamSplit> split;
   std::vector<TeamRobot> robots;
   std::vector<TeamFusion> fusion;
