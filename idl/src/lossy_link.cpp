@@ -1,6 +1,7 @@
 #include "mrslam/dds/lossy_link.hpp"
 
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastdds/rtps/transport/test_UDPv4TransportDescriptor.h>
 #include <fastrtps/xmlparser/XMLProfileManager.h>
 #include <atomic>
@@ -27,6 +28,8 @@ using namespace eprosima::fastdds::dds;
 using eprosima::fastrtps::types::ReturnCode_t;
 using Clock = std::chrono::steady_clock;
 
+constexpr std::uint32_t kSharedMemorySegment = 32 * 1024 * 1024;  // as config/dds/profiles.xml
+
 // The sender's drop decisions: seeded, counted.
 struct DropDice {
   std::mutex mutex;
@@ -44,7 +47,7 @@ struct DropDice {
   }
 };
 
-DomainParticipantQos udpOnly(
+DomainParticipantQos onlyThrough(
     std::shared_ptr<eprosima::fastdds::rtps::TransportDescriptorInterface> transport) {
   DomainParticipantQos qos = PARTICIPANT_QOS_DEFAULT;
   qos.transport().use_builtin_transports = false;
@@ -95,10 +98,18 @@ LossyMapLink::LossyMapLink(const LossyLinkSettings& settings) : impl_(std::make_
     const auto shared = dice.lock();
     return shared && shared->roll();
   };
-  impl_->sender = factory->create_participant(settings.domain_id, udpOnly(lossy));
-  impl_->receiver = factory->create_participant(
-      settings.domain_id,
-      udpOnly(std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>()));
+  if (settings.transport == LinkTransport::kUdp) {
+    impl_->sender = factory->create_participant(settings.domain_id, onlyThrough(lossy));
+    impl_->receiver = factory->create_participant(
+        settings.domain_id,
+        onlyThrough(std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>()));
+  } else {
+    for (DomainParticipant** participant : {&impl_->sender, &impl_->receiver}) {
+      auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
+      shm->segment_size(kSharedMemorySegment);
+      *participant = factory->create_participant(settings.domain_id, onlyThrough(shm));
+    }
+  }
   if (impl_->sender == nullptr || impl_->receiver == nullptr) {
     throw DdsError("lossy link: cannot create the participants");
   }

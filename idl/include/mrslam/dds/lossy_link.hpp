@@ -2,8 +2,9 @@
 // A map link that loses packets, for tests and benchmarks of reliable delivery: two
 // participants in one process, joined by UDP only (no shared memory, intraprocess delivery off
 // for the whole process), the sender on Fast DDS's test UDP transport, which drops a seeded share
-// of the DATA_FRAG messages it sends. The map endpoints use the agents' XML profiles, so what is
-// measured is how the agents' maps survive a lossy network.
+// of the DATA_FRAG messages it sends. Or joined by shared memory only, to measure that path. The
+// map endpoints use the agents' XML profiles, so what is measured is how the agents' maps survive a
+// lossy network.
 
 #include <cstdint>
 #include <memory>
@@ -13,8 +14,15 @@
 
 namespace mrslam::dds {
 
+/// How the two participants are joined.
+enum class LinkTransport {
+  kUdp,           ///< UDPv4 on the loopback, the sender on the lossy test transport
+  kSharedMemory,  ///< shared memory only (the agents' 32 MB segment); nothing is dropped
+};
+
 struct LossyLinkSettings {
   int domain_id = 0;
+  LinkTransport transport = LinkTransport::kUdp;
   std::string profiles_file;        ///< the agents' profiles (map writer / reader QoS)
   int drop_data_frag_percent = 20;  ///< DATA_FRAG messages the sender drops (0-100)
   std::uint64_t seed = 1;           ///< seed of the drops

@@ -1,11 +1,15 @@
-// Map delivery delay over UDP when the network loses DATA_FRAG messages (Fast DDS's test UDP
-// transport; UDP only, intraprocess delivery off): write() → the reader's take() of one
-// 800 × 800 map (640 kB, 11 fragments), with the agents' map QoS, at 0 % and 20 % loss.
-//   build/bench/dds_loss_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+// Robot → fusion delivery of one 800 × 800 local map (640 kB) with the agents' map QoS,
+// write() → the reader's take(), intraprocess delivery off: over shared memory, over UDP
+// loopback, and over UDP losing 20 % of the DATA_FRAG messages (Fast DDS's test transport).
+// Median and p99 of the iterations as counters (ms).
+//   build/bench/map_delivery_bench --benchmark_repetitions=3
+//   --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include "mrslam/dds/lossy_link.hpp"
 
@@ -27,21 +31,36 @@ msg::LocalMap mapOfSequence(std::uint64_t sequence, std::mt19937& random) {
   return map;
 }
 
-void BM_MapOverLossyUdp(benchmark::State& state) {
+double percentile(std::vector<double> values, double fraction) {
+  std::sort(values.begin(), values.end());
+  const auto index = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
+  return values[index];
+}
+
+// Arguments: transport (0 UDP, 1 shared memory), DATA_FRAG drop percent.
+void BM_MapDelivery(benchmark::State& state) {
   dds::LossyLinkSettings settings;
   settings.domain_id = 230;
   settings.profiles_file = MRSLAM_PROFILES_FILE;
-  settings.drop_data_frag_percent = static_cast<int>(state.range(0));
+  settings.transport =
+      state.range(0) == 1 ? dds::LinkTransport::kSharedMemory : dds::LinkTransport::kUdp;
+  settings.drop_data_frag_percent = static_cast<int>(state.range(1));
   dds::LossyMapLink link(settings);
   std::mt19937 random(1);
   std::uint64_t sequence = 0;
   std::uint64_t lost = 0;
+  std::vector<double> delays_ms;
   for (auto _ : state) {
+    state.PauseTiming();
     const msg::LocalMap map = mapOfSequence(++sequence, random);
+    state.ResumeTiming();
     const dds::MapDelivery delivery = link.send(map, 30.0);
     lost += delivery.whole ? 0 : 1;
+    delays_ms.push_back(delivery.delay_ms);
     state.SetIterationTime(delivery.delay_ms / 1000.0);
   }
+  state.counters["median_ms"] = percentile(delays_ms, 0.5);
+  state.counters["p99_ms"] = percentile(delays_ms, 0.99);
   const dds::LossyLinkCounters counters = link.counters();
   state.counters["frags_dropped_%"] =
       100.0 * static_cast<double>(counters.data_frags_dropped) /
@@ -49,12 +68,14 @@ void BM_MapOverLossyUdp(benchmark::State& state) {
   state.counters["maps_not_whole"] = static_cast<double>(lost);
 }
 
-BENCHMARK(BM_MapOverLossyUdp)
-    ->Arg(0)
-    ->Arg(20)
+BENCHMARK(BM_MapDelivery)
+    ->ArgNames({"shm", "drop%"})
+    ->Args({1, 0})
+    ->Args({0, 0})
+    ->Args({0, 20})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
-    ->Iterations(40);
+    ->Iterations(200);
 
 }  // namespace
 }  // namespace mrslam
