@@ -25,7 +25,18 @@ DdsSettings loadDdsSettings(const Config& section) {
   }
   settings.discovery_server_id =
       static_cast<int>(section.getInt("discovery_server_id", 0, {0, 255}));
+  const Config security = section.section("security");
+  settings.security_dir = security.getPath("dir", "");
+  settings.security_identity = security.getString("identity", "");
   return settings;
+}
+
+std::vector<std::string> securityFiles(const DdsSettings& settings) {
+  const std::filesystem::path dir(settings.security_dir);
+  const std::string& id = settings.security_identity;
+  return {(dir / "ca.cert.pem").string(), (dir / "governance.smime").string(),
+          (dir / (id + ".cert.pem")).string(), (dir / (id + ".key.pem")).string(),
+          (dir / (id + ".permissions.smime")).string()};
 }
 
 std::string checkDiscoveryServerAddress(const std::string& address) {

@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   std::string out;
   double max_runtime = -1.0;
   std::string discovery_server;
+  std::string security_dir;
+  std::string security_identity;
   std::string log_level = "info";
   app.add_option("--config", config_path, "fusion config YAML")->required();
   app.add_option("--domain", domain, "DDS domain id (overrides the config)")
@@ -28,6 +30,10 @@ int main(int argc, char** argv) {
                  "IPv4:port of a Discovery Server to discover through (overrides the config)")
       ->check(
           [](const std::string& address) { return mrslam::checkDiscoveryServerAddress(address); });
+  app.add_option("--security-dir", security_dir,
+                 "DDS Security from this folder's files (scripts/make_test_pki.sh)");
+  app.add_option("--security-identity", security_identity,
+                 "the identity to prove (default: the config's, else \"fusion\")");
   app.add_option("--max-runtime", max_runtime, "give up after this many seconds (0: never)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");
   app.set_version_flag("--version", mrslam::versionLine("fusion_agent"));
@@ -43,6 +49,14 @@ int main(int argc, char** argv) {
     }
     if (!discovery_server.empty()) {
       config.dds.discovery_server = discovery_server;
+    }
+    if (!security_dir.empty()) {
+      config.dds.security_dir = security_dir;
+    }
+    if (!security_identity.empty()) {
+      config.dds.security_identity = security_identity;
+    } else if (config.dds.security_identity.empty()) {
+      config.dds.security_identity = "fusion";
     }
     if (max_runtime >= 0.0) {
       config.max_runtime_s = max_runtime;

@@ -63,6 +63,34 @@ void makeDiscoveryClient(eprosima::fastdds::dds::DomainParticipantQos& qos,
   discovery.m_DiscoveryServers.push_back(server);
 }
 
+// DDS Security with the builtin plugins and the files of scripts/make_test_pki.sh.
+void makeSecure(eprosima::fastdds::dds::DomainParticipantQos& qos, const DdsSettings& settings) {
+  if (settings.security_identity.empty()) {
+    throw DdsError("security: no identity to prove (dds.security.identity)");
+  }
+  const std::vector<std::string> files = securityFiles(settings);
+  for (const std::string& file : files) {
+    if (!std::filesystem::exists(file)) {
+      throw DdsError("security: " + file + " not found (scripts/make_test_pki.sh makes it)");
+    }
+  }
+  const auto uri = [](const std::string& file) {
+    return "file://" + std::filesystem::absolute(file).string();
+  };
+  auto& properties = qos.properties().properties();
+  const std::string auth = "dds.sec.auth.builtin.PKI-DH.";
+  const std::string access = "dds.sec.access.builtin.Access-Permissions.";
+  properties.emplace_back("dds.sec.auth.plugin", "builtin.PKI-DH");
+  properties.emplace_back(auth + "identity_ca", uri(files[0]));
+  properties.emplace_back(auth + "identity_certificate", uri(files[2]));
+  properties.emplace_back(auth + "private_key", uri(files[3]));
+  properties.emplace_back("dds.sec.access.plugin", "builtin.Access-Permissions");
+  properties.emplace_back(access + "permissions_ca", uri(files[0]));
+  properties.emplace_back(access + "governance", uri(files[1]));
+  properties.emplace_back(access + "permissions", uri(files[4]));
+  properties.emplace_back("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+}
+
 }  // namespace
 
 Participant::Participant(const DdsSettings& settings, const std::string& name)
@@ -79,6 +107,11 @@ Participant::Participant(const DdsSettings& settings, const std::string& name)
     makeDiscoveryClient(qos, settings.discovery_server, settings.discovery_server_id);
     spdlog::info("{}: discovery through the server at {} (id {})", name, settings.discovery_server,
                  settings.discovery_server_id);
+  }
+  if (!settings.security_dir.empty()) {
+    makeSecure(qos, settings);
+    spdlog::info("{}: DDS Security as '{}' ({})", name, settings.security_identity,
+                 settings.security_dir);
   }
   participant_ = factory->create_participant(settings.domain_id, qos);
   if (participant_ == nullptr) {

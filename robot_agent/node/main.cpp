@@ -37,6 +37,8 @@ struct Options {
   std::string robot_id;
   int domain = -1;
   std::string discovery_server;
+  std::string security_dir;
+  std::string security_identity;
   double speed = -1.0;
   std::string log;
   std::string positional_log;
@@ -171,6 +173,14 @@ RobotConfig loadConfig(Options& options) {
     }
     config.robot_id = options.robot_id;
   }
+  if (!options.security_dir.empty()) {
+    config.dds.security_dir = options.security_dir;
+  }
+  if (!options.security_identity.empty()) {
+    config.dds.security_identity = options.security_identity;
+  } else if (config.dds.security_identity.empty()) {
+    config.dds.security_identity = config.robot_id;
+  }
   if (!options.log.empty()) {
     config.source.path = options.log;
     if (detected) {
@@ -221,6 +231,10 @@ int main(int argc, char** argv) {
                  "IPv4:port of a Discovery Server to discover through (overrides the config)")
       ->check(
           [](const std::string& address) { return mrslam::checkDiscoveryServerAddress(address); });
+  app.add_option("--security-dir", options.security_dir,
+                 "DDS Security from this folder's files (scripts/make_test_pki.sh)");
+  app.add_option("--security-identity", options.security_identity,
+                 "the identity to prove (default: the config's, else the robot id)");
   app.add_option("--robot-id", options.robot_id,
                  "the robot's id on DDS and in file names (overrides the config)");
   app.add_option(

@@ -44,9 +44,17 @@ void addDomain(std::vector<std::string>& argv, const std::optional<int>& domain)
   }
 }
 
-// Every agent's DDS options: the domain, and the team's Discovery Server when it has one.
-void addDds(std::vector<std::string>& argv, const TeamSpec& team, const TeamRunOptions& options) {
+// Every agent's DDS options: the domain, the team's Discovery Server and its credentials (the
+// agent proves `identity`, or its robot id when empty) when it has them.
+void addDds(std::vector<std::string>& argv, const TeamSpec& team, const TeamRunOptions& options,
+            const std::string& identity) {
   addDomain(argv, domainOf(team, options));
+  if (!team.security_dir.empty()) {
+    argv.insert(argv.end(), {"--security-dir", team.security_dir});
+    if (!identity.empty()) {  // else the agent's own: its robot id
+      argv.insert(argv.end(), {"--security-identity", identity});
+    }
+  }
   if (team.discovery_server) {
     argv.insert(argv.end(),
                 {"--discovery-server", team.discovery_server->address + ":" +
@@ -96,7 +104,7 @@ std::vector<std::string> robotArguments(const TeamRobot& robot, const TeamSpec& 
   argv.insert(argv.end(),
               {"--out", local.string(), "--trajectory-out",
                (local / ((robot.id.empty() ? robot.name : robot.id) + ".tum")).string()});
-  addDds(argv, team, options);
+  addDds(argv, team, options, robot.id);
   return argv;
 }
 
@@ -107,7 +115,7 @@ std::vector<std::string> fusionArguments(const TeamFusion& fusion, const TeamSpe
   std::vector<std::string> argv = {
       (fs::path(options.bin_dir) / "fusion_agent" / "fusion_agent").string(), "--config",
       fusion.config, "--out", out.string()};
-  addDds(argv, team, options);
+  addDds(argv, team, options, fusion.name);
   return argv;
 }
 

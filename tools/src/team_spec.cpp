@@ -82,6 +82,7 @@ TeamSpec loadTeamSpec(const std::string& path) {
     settings.segments = static_cast<int>(split.requireInt("segments", {1.0, 64.0}));
     team.split = settings;
   }
+  team.security_dir = config.getPath("security_dir", "");
   if (config.has("discovery_server")) {
     const Config server = config.section("discovery_server");
     TeamDiscoveryServer settings;

@@ -43,5 +43,20 @@ TEST(DdsSettingsTest, ADiscoveryServerIsAnIpv4AddressAndPort) {
   EXPECT_NE(checkDiscoveryServerAddress("127.0.0.1:0"), "");
 }
 
+TEST(DdsSettingsTest, SecurityNamesTheCredentialsFolderAndIdentity) {
+  const DdsSettings settings = loadDdsSettings(Config::loadString(
+      "security:\n  dir: ../pki\n  identity: robot7\n", "/etc/mrslam/agent.yaml"));
+  EXPECT_EQ(settings.security_dir, "/etc/pki");
+  EXPECT_EQ(settings.security_identity, "robot7");
+  const std::vector<std::string> files = securityFiles(settings);
+  ASSERT_EQ(files.size(), 5u);
+  EXPECT_EQ(files[0], "/etc/pki/ca.cert.pem");
+  EXPECT_EQ(files[1], "/etc/pki/governance.smime");
+  EXPECT_EQ(files[2], "/etc/pki/robot7.cert.pem");
+  EXPECT_EQ(files[3], "/etc/pki/robot7.key.pem");
+  EXPECT_EQ(files[4], "/etc/pki/robot7.permissions.smime");
+  EXPECT_TRUE(loadDdsSettings(Config::loadString("domain_id: 1\n", "a.yaml")).security_dir.empty());
+}
+
 }  // namespace
 }  // namespace mrslam

@@ -89,6 +89,9 @@ TEST(TeamSpecTest, ATeamMayBringItsDiscoveryServer) {
   EXPECT_EQ(defaults.discovery_server->address, "127.0.0.1");
   EXPECT_EQ(defaults.discovery_server->port, 11811);
   EXPECT_FALSE(loadTeamSpec(writeTeam("robots:\n  - config: a.yaml\n")).discovery_server);
+  const std::string secured = writeTeam("security_dir: pki\nrobots:\n  - config: a.yaml\n");
+  EXPECT_EQ(std::filesystem::path(loadTeamSpec(secured).security_dir),
+            std::filesystem::path(secured).parent_path() / "pki");
   EXPECT_THAT(loadError("discovery_server:\n  address: host\nrobots:\n  - config: a.yaml\n"),
               HasSubstr("team.yaml:2: discovery_server.address: 'host' is not an IPv4 address"));
   EXPECT_THAT(loadError("discovery_server:\n  port: 0\nrobots:\n  - config: a.yaml\n"),

@@ -3,6 +3,7 @@
 // struct, so configs load without any DDS library.
 
 #include <string>
+#include <vector>
 
 #include "mrslam/common/config.hpp"
 
@@ -16,10 +17,19 @@ struct DdsSettings {
   /// the participant being its client; empty: simple discovery (multicast).
   std::string discovery_server;
   int discovery_server_id = 0;  ///< the server's id (-i), which fixes its GUID prefix
+  /// DDS Security (PKI-DH, Access-Permissions, AES-GCM-GMAC) from the files of
+  /// scripts/make_test_pki.sh in this folder; empty: off. The participant proves itself with
+  /// `security_identity`.cert.pem / .key.pem / .permissions.smime, trusts ca.cert.pem and
+  /// follows governance.smime.
+  std::string security_dir;
+  std::string security_identity;  ///< empty: the agent's own (robot id, or "fusion")
 };
 
 /// Reads the `dds:` section. profiles_file defaults to dds/profiles.xml beside the config file.
 DdsSettings loadDdsSettings(const Config& section);
+
+/// The files security needs, in the order CA, governance, certificate, key, permissions.
+std::vector<std::string> securityFiles(const DdsSettings& settings);
 
 /// Empty when `address` is `IPv4:port` (port 1-65535), else what is wrong with it.
 std::string checkDiscoveryServerAddress(const std::string& address);

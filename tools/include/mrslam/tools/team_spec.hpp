@@ -18,6 +18,8 @@
 //   fusion:
 //     - config: intel_team_fusion.yaml
 //   final_grace_s: 120            # after the last robot ended, fusion agents get this long
+//   security_dir: pki             # optional: DDS Security; every agent proves its name (robot id
+//                                 #   or fusion name): scripts/make_test_pki.sh pki robot1 ...
 //   discovery_server:             # optional: start a Discovery Server (fast-discovery-server,
 //     address: 127.0.0.1          #   id 0) listening here; every agent discovers through it
 //     port: 11811
@@ -59,6 +61,7 @@ struct TeamDiscoveryServer {
 struct TeamSpec {
   std::optional<int> domain_id;
   std::optional<TeamDiscoveryServer> discovery_server;
+  std::string security_dir;  ///< DDS Security credentials of every agent; empty: off
   std::optional<TeamSplit> split;
   std::vector<TeamRobot> robots;
   std::vector<TeamFusion> fusion;
