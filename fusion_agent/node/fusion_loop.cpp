@@ -85,13 +85,22 @@ void FusionLoop::finalMerges() {
   publishAttempts();
 }
 
+constexpr std::chrono::milliseconds kLoopPeriod{50};
+
 int FusionLoop::run(const std::atomic<bool>& shutdown) {
   const Clock::time_point start = Clock::now();
   Clock::time_point last_publish = start;
   Clock::time_point last_write = start;
   spdlog::info("fusion: {} listening on domain {}", config_.fusion_id, config_.dds.domain_id);
   while (true) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    // A new map wakes the loop at once, a change waiting for its publish period when that is
+    // due; otherwise the loop looks around every 50 ms.
+    std::chrono::duration<double> wait = kLoopPeriod;
+    if (changed_) {
+      wait = std::min(wait, std::chrono::duration<double>(std::max(
+                                0.0, config_.publish_period_s - secondsSince(last_publish))));
+    }
+    store_.waitForChange(offered_version_, std::chrono::ceil<std::chrono::milliseconds>(wait));
     const bool complete = config_.exit_when_final && allExpectedFinal();
     const bool timed_out =
         config_.max_runtime_s > 0.0 && secondsSince(start) > config_.max_runtime_s;

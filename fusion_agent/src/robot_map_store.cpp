@@ -12,6 +12,7 @@ RobotMapStore::Outcome RobotMapStore::update(RobotMap map, bool restarted) {
   const std::string robot_id = map.robot_id;
   maps_[robot_id] = std::move(map);
   ++version_;
+  changed_.notify_all();
   return Outcome::kStored;
 }
 
@@ -26,6 +27,7 @@ bool RobotMapStore::setStale(const std::string& robot_id, bool stale) {
   }
   found->second.stale = stale;
   ++version_;  // the outputs change
+  changed_.notify_all();
   return true;
 }
 
@@ -42,6 +44,11 @@ std::vector<RobotMap> RobotMapStore::snapshot() const {
 std::uint64_t RobotMapStore::version() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return version_;
+}
+
+bool RobotMapStore::waitForChange(std::uint64_t seen, std::chrono::milliseconds timeout) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return changed_.wait_for(lock, timeout, [&] { return version_ != seen; });
 }
 
 bool RobotMapStore::has(const std::string& robot_id) const {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <thread>
+
 namespace mrslam::fusion {
 namespace {
 
@@ -28,6 +30,22 @@ TEST(RobotMapStoreTest, KeepsTheNewestMapOfEachRobot) {
   EXPECT_TRUE(store.isFinal("a"));
   EXPECT_FALSE(store.isFinal("b"));
   EXPECT_FALSE(store.has("c"));
+}
+
+TEST(RobotMapStoreTest, AWaiterWakesWhenAMapIsStoredAndNotBefore) {
+  RobotMapStore store;
+  const std::uint64_t seen = store.version();
+  EXPECT_FALSE(store.waitForChange(seen, std::chrono::milliseconds(10)));  // nothing came
+  std::thread sender([&store] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    store.update(mapOf("a", 1));
+  });
+  EXPECT_TRUE(store.waitForChange(seen, std::chrono::seconds(10)));
+  sender.join();
+  EXPECT_EQ(store.version(), seen + 1);
+  EXPECT_TRUE(store.waitForChange(seen, std::chrono::milliseconds(0)));  // already past it
+  EXPECT_FALSE(store.update(mapOf("a", 1)) == RobotMapStore::Outcome::kStored);
+  EXPECT_FALSE(store.waitForChange(seen + 1, std::chrono::milliseconds(10)));  // outdated: no
 }
 
 TEST(RobotMapStoreTest, AStaleMapIsKeptFlaggedUntilTheRobotSendsAgain) {

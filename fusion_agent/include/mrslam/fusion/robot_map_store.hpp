@@ -2,6 +2,8 @@
 // The newest local map of every robot, as received (thread-safe: DDS listeners write, the
 // fusion loop reads).
 
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <map>
 #include <mutex>
@@ -41,11 +43,14 @@ class RobotMapStore {
   std::vector<RobotMap> snapshot() const;
   /// Increases on every stored map.
   std::uint64_t version() const;
+  /// Waits up to `timeout` for the version to move past `seen`; true when it has.
+  bool waitForChange(std::uint64_t seen, std::chrono::milliseconds timeout) const;
   bool has(const std::string& robot_id) const;
   bool isFinal(const std::string& robot_id) const;
 
  private:
   mutable std::mutex mutex_;
+  mutable std::condition_variable changed_;
   std::map<std::string, RobotMap> maps_;
   std::uint64_t version_ = 0;
 };
