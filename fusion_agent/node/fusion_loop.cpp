@@ -136,8 +136,12 @@ int FusionLoop::run(const std::atomic<bool>& shutdown) {
       last_write = Clock::now();
     }
   }
-  spdlog::info("fusion: wrote {} ({} maps refused)", config_.output_folder,
-               node_.rejected().total());
+  std::string refusals;
+  for (const auto& [kind, count] : node_.rejected().counts()) {
+    refusals += (refusals.empty() ? ": " : ", ") + kind + " " + std::to_string(count);
+  }
+  spdlog::info("fusion: wrote {} ({} maps refused{})", config_.output_folder,
+               node_.rejected().total(), refusals);
   return 0;
 }
 

@@ -14,12 +14,13 @@
 
 #include "mrslam/tools/child_process.hpp"
 #include "test_data.hpp"
+#include "test_domain.hpp"
 
 namespace mrslam::test {
 
 /// A DDS domain of this test process alone (tests run in parallel processes).
 inline int privateDomain() {
-  return 100 + static_cast<int>(getpid() % 120);
+  return testDomain();
 }
 
 inline std::unique_ptr<tools::ChildProcess> startAgent(const std::string& program,

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "test_data.hpp"
+#include "test_domain.hpp"
 
 namespace mrslam::dds {
 namespace {
@@ -31,7 +32,7 @@ msg::LocalMap randomMap(std::uint64_t sequence, std::mt19937& random) {
 
 TEST(LossyLinkTest, MapsArriveWholeWhenAFifthOfTheFragmentsIsLost) {
   LossyLinkSettings settings;
-  settings.domain_id = 200 + static_cast<int>(getpid() % 30);
+  settings.domain_id = test::testDomain();
   settings.profiles_file = test::sourcePath("config/dds/profiles.xml");
   settings.drop_data_frag_percent = 20;
   LossyMapLink link(settings);

@@ -10,6 +10,7 @@
 #include "mrslam/dds/topics.hpp"
 #include "mrslam_msgsPubSubTypes.h"
 #include "test_data.hpp"
+#include "test_domain.hpp"
 
 namespace mrslam::dds {
 namespace {
@@ -18,7 +19,7 @@ using namespace eprosima::fastdds::dds;
 
 DdsSettings testSettings() {
   DdsSettings settings;
-  settings.domain_id = 150 + static_cast<int>(getpid() % 50);
+  settings.domain_id = test::testDomain();
   settings.profiles_file = test::sourcePath("config/dds/profiles.xml");
   return settings;
 }
