@@ -42,6 +42,8 @@ FusionNode::FusionNode(const FusionConfig& config, RobotMapStore& store)
       dds::kGlobalMapTopic, dds::kStateWriterProfile);
   transforms_writer_ = participant_.createWriter<msg::PairwiseTransformPubSubType>(
       dds::kTransformsTopic, dds::kStateWriterProfile);
+  status_writer_ = participant_.createWriter<msg::FusionStatusPubSubType>(dds::kFusionStatusTopic,
+                                                                          dds::kStateWriterProfile);
   if (config.ros2_map) {
     ros_map_writer_ = participant_.createWriter<nav_msgs::msg::dds_::OccupancyGrid_PubSubType>(
         dds::kRosMapTopic, dds::kStateWriterProfile);
@@ -121,6 +123,7 @@ void FusionNode::receiveMaps(DataReader* reader) {
     if (!info.valid_data) {
       continue;
     }
+    ++maps_received_;
     const std::string& robot_id = message.robot_id();
     if (!isValidRobotId(robot_id)) {
       rejected_.report("bad robot id", "a map with an invalid robot id was refused");
@@ -169,7 +172,31 @@ void FusionNode::receiveStatus(DataReader* reader) {
   }
 }
 
+void FusionNode::publishStatus(const GlobalMapResult& result, std::uint64_t sequence) {
+  msg::FusionStatus status;
+  status.fusion_id(config_.fusion_id);
+  status.stamp(dds::toMsg(result.stamp));
+  status.maps_received(maps_received_.load());
+  status.maps_refused(rejected_.total());
+  for (const auto& [kind, count] : rejected_.counts()) {
+    msg::RefusalCount refusal;
+    refusal.kind(kind);
+    refusal.count(count);
+    status.refusals().push_back(refusal);
+  }
+  std::uint32_t placed = 0;
+  for (const Placement& placement : result.placements) {
+    placed += placement.placed ? 1 : 0;
+  }
+  status.robots_known(static_cast<std::uint32_t>(result.placements.size()));
+  status.robots_placed(placed);
+  status.robots_stale(static_cast<std::uint32_t>(store_.staleCount()));
+  status.global_maps_published(sequence);
+  status_writer_->write(&status);
+}
+
 void FusionNode::publish(const GlobalMapResult& result, std::uint64_t sequence) {
+  publishStatus(result, sequence);
   msg::GlobalMap message;
   message.sequence_number(sequence);
   message.stamp(dds::toMsg(result.stamp));

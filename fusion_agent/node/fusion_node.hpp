@@ -2,6 +2,7 @@
 // The fusion agent's DDS glue: receives every robot's local map (checked before it is stored),
 // publishes the global map and the robots' placements.
 
+#include <atomic>
 #include <map>
 #include <mutex>
 #include <string>
@@ -20,6 +21,7 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   FusionNode(const FusionConfig& config, RobotMapStore& store);
   ~FusionNode() override;
 
+  /// The global map, and with it the agent's health on mrslam/fusion_status.
   void publish(const GlobalMapResult& result, std::uint64_t sequence);
   /// One pairwise merge, accepted or refused, on the transforms topic.
   void publishAttempt(const MergeAttempt& attempt);
@@ -42,6 +44,7 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
  private:
   void receiveMaps(eprosima::fastdds::dds::DataReader* reader);
   void receiveStatus(eprosima::fastdds::dds::DataReader* reader);
+  void publishStatus(const GlobalMapResult& result, std::uint64_t sequence);
   /// Remembers which writer sends a robot's maps; true when it is a new one (a restart).
   bool noteWriter(const std::string& robot_id,
                   const eprosima::fastrtps::rtps::InstanceHandle_t& writer);
@@ -54,6 +57,8 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   eprosima::fastdds::dds::DataReader* status_reader_ = nullptr;
   eprosima::fastdds::dds::DataWriter* global_map_writer_ = nullptr;
   eprosima::fastdds::dds::DataWriter* transforms_writer_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
+  std::atomic<std::uint64_t> maps_received_{0};
   eprosima::fastdds::dds::DataWriter* ros_map_writer_ = nullptr;
   std::mutex writers_mutex_;
   std::map<std::string, eprosima::fastrtps::rtps::InstanceHandle_t> writer_of_robot_;

@@ -51,6 +51,15 @@ bool RobotMapStore::waitForChange(std::uint64_t seen, std::chrono::milliseconds 
   return changed_.wait_for(lock, timeout, [&] { return version_ != seen; });
 }
 
+std::size_t RobotMapStore::staleCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::size_t stale = 0;
+  for (const auto& entry : maps_) {
+    stale += entry.second.stale ? 1 : 0;
+  }
+  return stale;
+}
+
 bool RobotMapStore::has(const std::string& robot_id) const {
   std::lock_guard<std::mutex> lock(mutex_);
   return maps_.count(robot_id) != 0;

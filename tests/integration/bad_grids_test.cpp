@@ -1,6 +1,7 @@
 // Wrong grids from the network: a fusion agent (its own process) refuses, counts and never
 // merges a local map whose header disagrees with its data, whose origin is not a number, whose
-// cells are out of range or whose robot is not on the allow-list; good maps still get through.
+// cells are out of range or whose robot is not on the allow-list; good maps still get through,
+// and the agent's health on mrslam/fusion_status counts what it refused.
 
 #include <gtest/gtest.h>
 
@@ -54,6 +55,8 @@ TEST(BadGridsTest, WrongGridsAreRefusedCountedAndNeverMerged) {
   dds::Participant participant(settings, "bad grid sender");
   auto* writer = participant.createWriter<msg::LocalMapPubSubType>(dds::kLocalMapTopic,
                                                                    dds::kMapWriterProfile);
+  auto* status_reader = participant.createReader<msg::FusionStatusPubSubType>(
+      dds::kFusionStatusTopic, dds::kStateReaderProfile, nullptr);
   ASSERT_TRUE(dds::waitForReaders(writer, 1, 30.0)) << logOf(*fusion);
 
   msg::LocalMap short_data = goodMap("robot2", 1);
@@ -73,6 +76,26 @@ TEST(BadGridsTest, WrongGridsAreRefusedCountedAndNeverMerged) {
   ASSERT_TRUE(writer->write(&good));
   ASSERT_TRUE(waitForLog(out / "fusion.log", "first map of robot1 received", 1, 30.0))
       << logOf(*fusion);
+  // The agent's health on DDS says the same (the global map with robot1 carries it).
+  msg::FusionStatus status;
+  bool counted = false;
+  for (int wait = 0; wait < 300 && !counted; ++wait) {
+    eprosima::fastdds::dds::SampleInfo info;
+    status_reader->wait_for_unread_message({0, 100'000'000});
+    while (status_reader->take_next_sample(&status, &info) ==
+           eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      counted = counted || (info.valid_data && status.maps_received() == 6);
+    }
+  }
+  ASSERT_TRUE(counted) << logOf(*fusion);
+  EXPECT_EQ(status.fusion_id(), "guard");
+  EXPECT_EQ(status.maps_refused(), 5u);
+  ASSERT_EQ(status.refusals().size(), 2u);
+  EXPECT_EQ(status.refusals()[0].kind(), "bad grid");
+  EXPECT_EQ(status.refusals()[0].count(), 4u);
+  EXPECT_EQ(status.refusals()[1].kind(), "robot not allowed");
+  EXPECT_EQ(status.robots_known(), 1u);
+  EXPECT_EQ(status.robots_placed(), 1u);
   fusion->signal(SIGINT);
   ASSERT_EQ(finish(*fusion, 60.0), 0) << logOf(*fusion);
 

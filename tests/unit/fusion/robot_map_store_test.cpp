@@ -59,8 +59,10 @@ TEST(RobotMapStoreTest, AStaleMapIsKeptFlaggedUntilTheRobotSendsAgain) {
   ASSERT_EQ(store.snapshot().size(), 1u);
   EXPECT_TRUE(store.snapshot()[0].stale);
   EXPECT_EQ(store.snapshot()[0].sequence, 5u);  // the last map stays
+  EXPECT_EQ(store.staleCount(), 1u);
   store.update(mapOf("a", 6));
   EXPECT_FALSE(store.snapshot()[0].stale);
+  EXPECT_EQ(store.staleCount(), 0u);
 }
 
 TEST(RobotMapStoreTest, ARestartedRobotNumbersAgainAndReplacesItsOldMap) {

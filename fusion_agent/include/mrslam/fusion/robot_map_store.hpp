@@ -46,6 +46,8 @@ class RobotMapStore {
   /// Waits up to `timeout` for the version to move past `seen`; true when it has.
   bool waitForChange(std::uint64_t seen, std::chrono::milliseconds timeout) const;
   bool has(const std::string& robot_id) const;
+  /// Robots whose map is flagged stale.
+  std::size_t staleCount() const;
   bool isFinal(const std::string& robot_id) const;
 
  private:

@@ -8,6 +8,7 @@ inline constexpr const char* kLocalMapTopic = "mrslam/local_map";
 inline constexpr const char* kRobotStatusTopic = "mrslam/robot_status";
 inline constexpr const char* kTransformsTopic = "mrslam/transforms";
 inline constexpr const char* kGlobalMapTopic = "mrslam/global_map";
+inline constexpr const char* kFusionStatusTopic = "mrslam/fusion_status";
 
 inline constexpr const char* kPoseWriterProfile = "mrslam_pose_writer";
 inline constexpr const char* kPoseReaderProfile = "mrslam_pose_reader";
