@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdlib>
@@ -53,6 +54,15 @@ LineReader::LineReader(std::string path, std::size_t max_line_bytes)
     throw std::runtime_error(path_ + ": cannot open (" + reason + ")");
   }
   gzbuffer(file_, 128 * 1024);
+  file_bytes_ = static_cast<double>(std::filesystem::file_size(path_, ignored));
+}
+
+double LineReader::fractionRead() const {
+  if (file_bytes_ <= 0.0) {
+    return 0.0;
+  }
+  const double offset = static_cast<double>(gzoffset(file_));
+  return offset < 0.0 ? 0.0 : std::min(1.0, offset / file_bytes_);
 }
 
 LineReader::~LineReader() {

@@ -225,4 +225,9 @@ ImuSample Simulator::makeImu(Stamp stamp) {
   return imu;
 }
 
+std::optional<double> Simulator::progress() const {
+  const double span = static_cast<double>(end_ns_ - start_ns_);
+  return span > 0.0 ? std::clamp(static_cast<double>(now_ns_ - start_ns_) / span, 0.0, 1.0) : 1.0;
+}
+
 }  // namespace mrslam::drivers

@@ -5,6 +5,7 @@
 // config/carmen.yaml or config/breezyslam.yaml by the log's format (what `./mrslam replay` runs).
 
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
@@ -103,6 +104,9 @@ int runRobot(const Options& options, const RobotConfig& config) {
   spdlog::info("{}: running on {} with the {} estimator", config.robot_id, source->describe(),
                mrslam::robot::estimatorTypeName(config.estimator.type));
   mrslam::robot::RobotRunner runner(config.runner, *source, *pipeline, output);
+  // A log or the simulator: how far the replay is, on standard error.
+  mrslam::robot::ReplayProgress progress(config.robot_id, stderr, ::isatty(STDERR_FILENO) == 1);
+  runner.setProgress(&progress);
   const auto summary = runner.run(mrslam::shutdownRequested());
   const auto counters = source->counters();
   spdlog::info("{}: {} samples, {} scans, {} maps published, {} malformed records skipped",

@@ -46,6 +46,12 @@ RunSummary RobotRunner::run(const std::atomic<bool>& stop) {
     if (secondsBetween(last_status_stamp_, now) >= settings_.status_period_s) {
       publishStatus(RobotState::kRunning, "running on " + source_.describe());
     }
+    if (progress_ != nullptr) {
+      progress_->update(source_.progress(), stamp);
+    }
+  }
+  if (progress_ != nullptr) {
+    progress_->finish();
   }
   summary.stopped_early = stop.load();
   publishMap(true);

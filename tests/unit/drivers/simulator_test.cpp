@@ -87,6 +87,20 @@ std::string configErrorOf(const std::string& yaml) {
   return "no error";
 }
 
+TEST(SimulatorTest, ProgressIsTheSimulatedTimeOverTheDuration) {
+  Simulator simulator(settingsFor(0, 10.0), DiffDriveParams{}, SensorMounting{});
+  ASSERT_TRUE(simulator.progress().has_value());
+  EXPECT_DOUBLE_EQ(*simulator.progress(), 0.0);
+  double before = 0.0;
+  while (std::optional<Sample> sample = simulator.next()) {
+    const double progress = *simulator.progress();
+    EXPECT_GE(progress, before);
+    EXPECT_NEAR(progress, stampOf(*sample).seconds() / 10.0, 1e-9);
+    before = progress;
+  }
+  EXPECT_GT(before, 0.99);
+}
+
 TEST(SimulatorTest, SameSeedGivesBitIdenticalSamples) {
   SimulatorSettings settings = settingsFor(1, 20.0);
   settings.seed = 7;

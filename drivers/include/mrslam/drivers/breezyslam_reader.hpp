@@ -53,6 +53,7 @@ class BreezySlamReader final : public SampleSource {
   std::optional<Sample> next() override;
   std::string describe() const override;
   SourceCounters counters() const override;
+  std::optional<double> progress() const override { return lines_.fractionRead(); }
 
   const BreezySlamSettings& settings() const { return settings_; }
   /// Malformed lines by kind ("field count", "not a number", "not finite", "negative").

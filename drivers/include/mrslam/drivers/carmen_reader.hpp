@@ -56,6 +56,7 @@ class CarmenReader final : public SampleSource {
   std::optional<Sample> next() override;
   std::string describe() const override;
   SourceCounters counters() const override;
+  std::optional<double> progress() const override { return lines_.fractionRead(); }
 
   const CarmenSettings& settings() const { return settings_; }
   /// Records of message types this reader does not read (RAWLASER1, ROBOTLASER1, ...).

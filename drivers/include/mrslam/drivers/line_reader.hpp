@@ -38,12 +38,15 @@ class LineReader {
   /// Whether the line last returned was longer than max_line_bytes and was cut.
   bool lastLineCut() const { return cut_; }
   const std::string& path() const { return path_; }
+  /// Share of the file read so far (compressed bytes for a .gz file), 0…1.
+  double fractionRead() const;
 
  private:
   bool fill();
 
   std::string path_;
   std::size_t max_line_bytes_;
+  double file_bytes_ = 0.0;  ///< size of the file on disk
   gzFile_s* file_ = nullptr;
   std::vector<char> buffer_;
   std::size_t begin_ = 0;

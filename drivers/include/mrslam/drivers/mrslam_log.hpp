@@ -64,6 +64,7 @@ class MrslamLogReader final : public SampleSource {
   std::optional<Sample> next() override;
   std::string describe() const override;
   SourceCounters counters() const override { return counters_; }
+  std::optional<double> progress() const override { return lines_.fractionRead(); }
   /// The robot id the header names (empty when absent).
   const std::string& robotId() const { return robot_id_; }
 
@@ -102,6 +103,7 @@ class RecordingSource final : public SampleSource {
   std::string describe() const override { return source_->describe() + " (recorded)"; }
   SourceCounters counters() const override { return source_->counters(); }
   std::vector<SensorStatus> sensors() const override { return source_->sensors(); }
+  std::optional<double> progress() const override { return source_->progress(); }
 
  private:
   std::unique_ptr<SampleSource> source_;

@@ -39,6 +39,7 @@ class OdometryNoiseSource final : public SampleSource {
   std::string describe() const override;
   SourceCounters counters() const override { return source_->counters(); }
   std::vector<SensorStatus> sensors() const override { return source_->sensors(); }
+  std::optional<double> progress() const override { return source_->progress(); }
 
  private:
   OdometryPose addNoise(const OdometryPose& odometry);

@@ -38,6 +38,8 @@ class SampleSource {
   virtual SourceCounters counters() const = 0;
   /// Per-sensor health of a live source (devices); empty for logs and the simulator.
   virtual std::vector<SensorStatus> sensors() const { return {}; }
+  /// How much of the source has been read (0…1), when it is known (a log, the simulator).
+  virtual std::optional<double> progress() const { return std::nullopt; }
 };
 
 /// What a log reader does with a malformed line.

@@ -106,6 +106,8 @@ class Simulator : public SampleSource {
   /// E.g. "simulator robot 1 (seed 7, 60 s)".
   std::string describe() const override;
   SourceCounters counters() const override { return counters_; }
+  /// Simulated time so far over the run's duration.
+  std::optional<double> progress() const override;
 
   const FloorPlan& floorPlan() const { return plan_; }
   /// The true pose T_world_robot at the stamp of the latest sample.

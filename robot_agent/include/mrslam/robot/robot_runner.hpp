@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mrslam/drivers/sample_source.hpp"
+#include "mrslam/robot/replay_progress.hpp"
 #include "mrslam/robot/robot_pipeline.hpp"
 
 namespace mrslam::robot {
@@ -69,6 +70,8 @@ class RobotRunner {
 
   /// The map as it would be published now.
   MapSnapshot snapshot(bool is_final) const;
+  /// Reports the replay's progress there after every sample (none: no report).
+  void setProgress(ReplayProgress* progress) { progress_ = progress; }
 
  private:
   void pace(Stamp stamp);
@@ -85,6 +88,7 @@ class RobotRunner {
   bool clock_started_ = false;
   Stamp first_stamp_;
   std::chrono::steady_clock::time_point wall_start_;
+  ReplayProgress* progress_ = nullptr;
 };
 
 /// Keeps at most `max_points` poses, evenly spread, always with the last.
