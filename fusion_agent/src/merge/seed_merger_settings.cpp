@@ -108,6 +108,10 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       "max_translation_ambiguity", settings.max_translation_ambiguity, {0.0, 1.0});
   settings.max_rival_share =
       section.getDouble("max_rival_share", settings.max_rival_share, {0.0, 1.0});
+  settings.wall_icp_iterations = static_cast<int>(
+      section.getInt("wall_icp_iterations", settings.wall_icp_iterations, {0, 1000}));
+  settings.wall_icp_distance_cells =
+      section.getDouble("wall_icp_distance_cells", settings.wall_icp_distance_cells, {0.5, 50.0});
   settings.radon_fallback = section.getBool("radon_fallback", settings.radon_fallback);
   settings.fallback_rotations =
       readInt(section, "fallback_rotations", settings.fallback_rotations, {1, 360});

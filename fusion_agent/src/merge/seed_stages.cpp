@@ -303,15 +303,27 @@ std::vector<Candidate> mergeCandidates(std::vector<Candidate> a, const std::vect
 Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                  const ComparisonTables& tables, const SeedMergerSettings& settings) {
   const GridTransform polished = polishRotation(T_to_from, inputs, tables, settings);
-  const TranslationSearch coarse = searchTranslation(
-      inputs.coarse_samples, inputs.to, polished, settings.translation_window_delta, tables, true);
+  TranslationSearch coarse = searchTranslation(inputs.coarse_samples, inputs.to, polished,
+                                               settings.translation_window_delta, tables, true);
   const TranslationSearch fine_similarity =
       searchTranslation(inputs.fine_samples, inputs.to, coarse.best_similarity, 1, tables, false);
-  const TranslationSearch fine_entropy =
-      searchTranslation(inputs.fine_samples, inputs.to, coarse.least_entropy, 1, tables);
   Refined refined;
   refined.T_to_from = fine_similarity.best_similarity;
   refined.full = compareAt(inputs.all_samples, inputs.to, refined.T_to_from, tables);
+  if (settings.wall_icp_iterations > 0) {
+    // Walls onto walls, kept when the maps agree at least as well there; the entropy and
+    // ambiguity figures are then taken around the refined transform.
+    const GridTransform on_walls = refineOnWalls(refined.T_to_from, inputs, tables, settings);
+    const Agreement at_walls = compareAt(inputs.all_samples, inputs.to, on_walls, tables);
+    if (at_walls.similarity() >= refined.full.similarity()) {
+      refined.T_to_from = on_walls;
+      refined.full = at_walls;
+      coarse = searchTranslation(inputs.coarse_samples, inputs.to, on_walls,
+                                 settings.translation_window_delta, tables, true);
+    }
+  }
+  const TranslationSearch fine_entropy =
+      searchTranslation(inputs.fine_samples, inputs.to, coarse.least_entropy, 1, tables);
   refined.structure = std::min(
       structureAgreement(inputs.all_samples, inputs.to, refined.T_to_from, tables).index(),
       structureAgreement(inputs.occupied_to, inputs.from, refined.T_to_from.inverse(), tables)

@@ -124,6 +124,12 @@ struct Refined {
 Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                  const ComparisonTables& tables, const SeedMergerSettings& settings);
 
+/// Step 9 of seed_merger.hpp: `T_to_from` refined by point-to-point ICP of `from`'s occupied
+/// cells onto `to`'s (nearest wall within wall_icp_distance_cells); unchanged when too few walls
+/// meet.
+GridTransform refineOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs,
+                            const ComparisonTables& tables, const SeedMergerSettings& settings);
+
 /// Step 8 of seed_merger.hpp: hypotheses from global Radon rotations and a coarse correlation
 /// over all translations.
 std::vector<Hypothesis> fallbackHypotheses(const PreparedMap& from, const PreparedMap& to,

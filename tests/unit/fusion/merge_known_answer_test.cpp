@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
@@ -53,6 +54,44 @@ TEST_P(MergeKnownAnswerTest, CropsOverlappingByHalfOrMoreMergeWithinTwoCellsAndO
   ASSERT_GE(tally.cases, 8);
   EXPECT_EQ(tally.wrong_accepts, 0);
   EXPECT_GE(tally.successes, tally.cases - 1) << tally.successes << " of " << tally.cases;
+}
+
+// The walls-onto-walls refinement takes accepted merges below the cell and the polish step.
+TEST(MergeKnownAnswerPrecisionTest, AcceptedMergesLandWithinAFractionOfACell) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
+  const GridMap map = loadShared("freiburg-intel.pgm");
+  std::vector<double> distances;
+  std::vector<double> angles;
+  for (const int iterations : {30, 0}) {  // refined, then the discrete search alone
+    SeedMergerSettings settings;
+    settings.wall_icp_iterations = iterations;
+    SeedMerger merger(settings);
+    std::mt19937 cases(11);
+    std::vector<double> distance_errors;
+    std::vector<double> angle_errors;
+    for (int i = 0; i < 12; ++i) {
+      const merge_test::KnownCase known = merge_test::randomCase(map, 300, 0.5, 1.01, cases);
+      const MergeResult result = merger.merge(known.from, known.to);
+      if (known.overlap > 0.0 && result.accepted) {
+        const merge_test::PoseError error = merge_test::poseError(result.T_to_from, known);
+        distance_errors.push_back(error.translation_cells);
+        angle_errors.push_back(error.rotation_rad * 180.0 / M_PI);
+      }
+    }
+    ASSERT_GE(distance_errors.size(), 8u) << iterations;
+    std::nth_element(distance_errors.begin(), distance_errors.begin() + distance_errors.size() / 2,
+                     distance_errors.end());
+    std::nth_element(angle_errors.begin(), angle_errors.begin() + angle_errors.size() / 2,
+                     angle_errors.end());
+    distances.push_back(distance_errors[distance_errors.size() / 2]);
+    angles.push_back(angle_errors[angle_errors.size() / 2]);
+    std::printf("wall_icp_iterations %d: median error %.2f cells, %.2f deg\n", iterations,
+                distances.back(), angles.back());
+  }
+  EXPECT_LE(distances[0], 0.5);
+  EXPECT_LE(angles[0], 0.25);
+  EXPECT_LT(distances[0], distances[1]);  // better than the discrete search alone
+  EXPECT_LT(angles[0], angles[1]);
 }
 
 INSTANTIATE_TEST_SUITE_P(RealMaps, MergeKnownAnswerTest,
