@@ -134,9 +134,36 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
                     " and " + std::to_string(prepared_to.segments.size()) + " verified segments";
     return result;
   }
+  if (!refusal(refined).empty()) {
+    // The best candidate is refused: the next ones get their chance, each facing every other
+    // candidate as a rival (so one that a better-ranked transform explains as well is refused).
+    if (std::optional<seed::Refined> next = nextAcceptable(candidates, inputs)) {
+      refined = *next;
+    }
+  }
   judge(refined, from, to, result);  // block 9
   lap(clock, timings_.verification);
   return result;
+}
+
+std::optional<seed::Refined> SeedMerger::nextAcceptable(
+    const std::vector<seed::Candidate>& candidates, const seed::SearchInputs& inputs) const {
+  const std::size_t judged =
+      std::min(candidates.size(), static_cast<std::size_t>(settings_.judged_candidates));
+  for (std::size_t k = 1; k < judged; ++k) {
+    std::vector<seed::Candidate> facing = {candidates[k]};
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (i != k) {
+        facing.push_back(candidates[i]);
+      }
+    }
+    seed::Refined refined = seed::finalize(candidates[k].T_to_from, inputs, tables_, settings_);
+    refined.rival_share = seed::rivalShare(facing, inputs, settings_);
+    if (refusal(refined).empty()) {
+      return refined;
+    }
+  }
+  return std::nullopt;
 }
 
 seed::Refined SeedMerger::refineBest(const std::vector<seed::Candidate>& candidates,

@@ -67,7 +67,8 @@ TEST(MergeSeedMergerTest, SettingsReadThePapersSymbolsAndDegrees) {
   const SeedMergerSettings loaded = loadSeedMergerSettings(
       yaml("edge_merge_distance_dt: 5\nsegment_points_n: 40\nhistogram_spread_hd: 3.5\n"
            "max_turn_omega_c_deg: 90\ntranslation_window_delta: 9\nmin_verification_v: 0.8\n"
-           "occupied_threshold: 70\nseed: 42\nradon_fallback: false\n"));
+           "occupied_threshold: 70\nseed: 42\nradon_fallback: false\njudged_candidates: 5\n"
+           "wall_icp_iterations: 0\nwall_icp_distance_cells: 4.5\n"));
   EXPECT_EQ(loaded.edges.edge_merge_distance_dt, 5);
   EXPECT_EQ(loaded.segments.segment_points_n, 40);
   EXPECT_DOUBLE_EQ(loaded.verification.histogram_spread_hd, 3.5);
@@ -78,6 +79,9 @@ TEST(MergeSeedMergerTest, SettingsReadThePapersSymbolsAndDegrees) {
   EXPECT_EQ(loaded.similarity.occupied_threshold, 70);
   EXPECT_EQ(loaded.seed, 42u);
   EXPECT_FALSE(loaded.radon_fallback);
+  EXPECT_EQ(loaded.judged_candidates, 5);
+  EXPECT_EQ(loaded.wall_icp_iterations, 0);
+  EXPECT_DOUBLE_EQ(loaded.wall_icp_distance_cells, 4.5);
 }
 
 TEST(MergeSeedMergerTest, SettingsErrorsNameTheFileLineAndKey) {
@@ -91,6 +95,8 @@ TEST(MergeSeedMergerTest, SettingsErrorsNameTheFileLineAndKey) {
   EXPECT_THROW(loadSeedMergerSettings(yaml("free_threshold: 70\n")), ConfigError);
   EXPECT_THROW(loadSeedMergerSettings(yaml("canny_low: 200\ncanny_high: 100\n")), ConfigError);
   EXPECT_THROW(loadSeedMergerSettings(yaml("segment_points_n: 5\n")), ConfigError);
+  EXPECT_THROW(loadSeedMergerSettings(yaml("judged_candidates: 0\n")), ConfigError);
+  EXPECT_THROW(loadSeedMergerSettings(yaml("wall_icp_distance_cells: 0.1\n")), ConfigError);
 }
 
 TEST(MergeSeedMergerTest, RefusesEmptyInvalidAndMismatchedMaps) {

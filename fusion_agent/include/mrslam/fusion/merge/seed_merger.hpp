@@ -54,6 +54,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -100,6 +101,7 @@ struct SeedMergerSettings {
   double entropy_agreement_cells = 1.5;     ///< largest gap best-similarity ↔ least-entropy
   double max_translation_ambiguity = 0.95;  ///< largest runner-up / best agr - dis in ±δ
   double max_rival_share = 0.93;            ///< largest agr - dis of a rival transform / best
+  int judged_candidates = 3;                ///< candidates judged in turn when the best is refused
   int wall_icp_iterations = 30;             ///< final refinement: ICP of walls onto walls (0: off)
   double wall_icp_distance_cells = 3.0;     ///< final refinement: farthest wall matched
   bool radon_fallback = true;               ///< try global Radon rotations when segments fail
@@ -133,6 +135,9 @@ class SeedMerger : public MapMerger {
   const SeedMergeTimings& lastTimings() const { return timings_; }
 
  private:
+  /// The first of the next `judged_candidates` - 1 candidates that passes block 9, refined.
+  std::optional<seed::Refined> nextAcceptable(const std::vector<seed::Candidate>& candidates,
+                                              const seed::SearchInputs& inputs) const;
   /// Block 8's last steps and block 9's figures for the first candidate.
   seed::Refined refineBest(const std::vector<seed::Candidate>& candidates,
                            const seed::SearchInputs& inputs) const;
