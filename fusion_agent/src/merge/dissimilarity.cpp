@@ -1,0 +1,115 @@
+#include "mrslam/fusion/merge/dissimilarity.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mrslam::fusion {
+
+namespace {
+
+bool isOfClass(std::int8_t value, CellClass cell_class, const SimilaritySettings& settings) {
+  if (value < 0) {
+    return false;  // unknown
+  }
+  return cell_class == CellClass::kOccupied ? value >= settings.occupied_threshold
+                                            : value <= settings.free_threshold;
+}
+
+// d(m1, m2, c): the mean distance, in `to`'s distance map, of `cells` mapped by `T`; the sum and
+// count of the cells that land inside are added to `sum` and `count`.
+void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMap& to,
+                     const GridTransform& T, double& sum, long long& count) {
+  for (const Eigen::Vector2i& cell : cells) {
+    const Eigen::Vector2d landed = T.apply(cell.cast<double>());
+    const int x = static_cast<int>(std::lround(landed.x()));
+    const int y = static_cast<int>(std::lround(landed.y()));
+    if (x < 0 || y < 0 || x >= to.width || y >= to.height) {
+      continue;
+    }
+    const std::int32_t distance = to.at(x, y);
+    if (distance < DistanceMap::kFar) {
+      sum += distance;
+      ++count;
+    }
+  }
+}
+
+double meanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMap& to,
+                    const GridTransform& T, bool& landed) {
+  double sum = 0.0;
+  long long count = 0;
+  addMeanDistance(cells, to, T, sum, count);
+  landed = landed || count > 0;
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+}  // namespace
+
+DistanceMap distanceMap(const GridMap& map, CellClass cell_class,
+                        const SimilaritySettings& settings) {
+  DistanceMap result;
+  result.width = map.geometry.width;
+  result.height = map.geometry.height;
+  result.distance.assign(map.cells.size(), DistanceMap::kFar);
+  const int w = result.width;
+  const auto at = [&](int x, int y) -> std::int32_t& {
+    return result.distance[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                           static_cast<std::size_t>(x)];
+  };
+  for (int y = 0; y < result.height; ++y) {  // first pass: left and upper neighbours
+    for (int x = 0; x < w; ++x) {
+      std::int32_t& d = at(x, y);
+      if (isOfClass(map.at(x, y), cell_class, settings)) {
+        d = 0;
+        continue;
+      }
+      if (x > 0) {
+        d = std::min(d, at(x - 1, y) + 1);
+      }
+      if (y > 0) {
+        d = std::min(d, at(x, y - 1) + 1);
+      }
+    }
+  }
+  for (int y = result.height - 1; y >= 0; --y) {  // second pass: right and lower neighbours
+    for (int x = w - 1; x >= 0; --x) {
+      std::int32_t& d = at(x, y);
+      if (x + 1 < w) {
+        d = std::min(d, at(x + 1, y) + 1);
+      }
+      if (y + 1 < result.height) {
+        d = std::min(d, at(x, y + 1) + 1);
+      }
+    }
+  }
+  return result;
+}
+
+DissimilarityMap prepareDissimilarity(const GridMap& map, const SimilaritySettings& settings) {
+  DissimilarityMap prepared;
+  prepared.occupied = distanceMap(map, CellClass::kOccupied, settings);
+  prepared.free = distanceMap(map, CellClass::kFree, settings);
+  for (int y = 0; y < map.geometry.height; ++y) {
+    for (int x = 0; x < map.geometry.width; ++x) {
+      if (isOfClass(map.at(x, y), CellClass::kOccupied, settings)) {
+        prepared.occupied_cells.emplace_back(x, y);
+      } else if (isOfClass(map.at(x, y), CellClass::kFree, settings)) {
+        prepared.free_cells.emplace_back(x, y);
+      }
+    }
+  }
+  return prepared;
+}
+
+double dissimilarity(const DissimilarityMap& from, const DissimilarityMap& to,
+                     const GridTransform& T_to_from) {
+  const GridTransform T_from_to = T_to_from.inverse();
+  bool landed = false;
+  const double psi = meanDistance(from.occupied_cells, to.occupied, T_to_from, landed) +
+                     meanDistance(to.occupied_cells, from.occupied, T_from_to, landed) +
+                     meanDistance(from.free_cells, to.free, T_to_from, landed) +
+                     meanDistance(to.free_cells, from.free, T_from_to, landed);
+  return landed ? psi : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace mrslam::fusion
