@@ -64,8 +64,22 @@ void FusionLoop::publish() {
     robot_ids.push_back(map.robot_id);
   }
   result_ = buildGlobalMap(maps_, reference, graph_.place(reference, robot_ids), config_.composer);
+  reportDroppedEdges();
   node_.publish(result_, ++sequence_);
   written_ = false;
+}
+
+void FusionLoop::reportDroppedEdges() {
+  for (const DroppedEdge& drop : graph_.dropped()) {
+    const std::string key = drop.estimate.from + ">" + drop.estimate.to;
+    if (reported_drops_.insert(key).second) {
+      spdlog::warn(
+          "fusion: the {} merge {} -> {} (V {:.3f}) breaks a loop by {:.2f} m and {:.1f} deg; it "
+          "is not used",
+          drop.estimate.method, drop.estimate.from, drop.estimate.to, drop.estimate.verification,
+          drop.translation_error_m, drop.rotation_error_rad * 180.0 / M_PI);
+    }
+  }
 }
 
 void FusionLoop::writeFiles() {

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <memory>
+#include <set>
 
 #include "fusion_node.hpp"
 #include "mrslam/fusion/merge_scheduler.hpp"
@@ -26,6 +27,8 @@ class FusionLoop {
   std::string missingRobots() const;
   /// Rebuilds and publishes the global map from the newest maps and placements.
   void publish();
+  /// Logs (once each) the merges the loop check drops.
+  void reportDroppedEdges();
   void writeFiles();
   void publishAttempts();
   void finalMerges();
@@ -33,6 +36,7 @@ class FusionLoop {
   const FusionConfig& config_;
   RobotMapStore store_;
   TeamGraph graph_;
+  std::set<std::string> reported_drops_;  ///< "from>to" of edges the loop check dropped
   FusionNode node_;
   std::unique_ptr<MergeScheduler> scheduler_;
   std::vector<RobotMap> maps_;

@@ -1,5 +1,6 @@
 #include "mrslam/fusion/team_graph.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <queue>
@@ -22,7 +23,82 @@ double edgeCost(const PairwiseEstimate& estimate) {
   return -std::log(std::max(estimate.verification, 1e-12));
 }
 
+// Robots joined by the edges taken so far: each group's robots with their pose in the group's
+// frame (the first robot's).
+class ConnectedGroups {
+ public:
+  /// T_group_robot, and the group, of a robot (a robot not seen yet is a group of its own).
+  std::pair<int, SE2> locate(const std::string& robot) {
+    const auto found = where_.find(robot);
+    if (found != where_.end()) {
+      return found->second;
+    }
+    const int group = next_group_++;
+    where_[robot] = {group, SE2()};
+    return where_[robot];
+  }
+  /// Joins the group of `from` into that of `to` through T_to_from.
+  void join(const std::string& from, const std::string& to, const SE2& T_to_from) {
+    const auto [group_to, T_gto_to] = locate(to);
+    const auto [group_from, T_gfrom_from] = locate(from);
+    // Every robot r of from's group: T_gto_r = T_gto_to · T_to_from · T_from_gfrom · T_gfrom_r.
+    const SE2 T_gto_gfrom = T_gto_to * T_to_from * T_gfrom_from.inverse();
+    for (auto& entry : where_) {
+      if (entry.second.first == group_from) {
+        entry.second = {group_to, T_gto_gfrom * entry.second.second};
+      }
+    }
+  }
+
+ private:
+  std::map<std::string, std::pair<int, SE2>> where_;
+  int next_group_ = 0;
+};
+
 }  // namespace
+
+std::vector<PairwiseEstimate> TeamGraph::consistentEdges(std::vector<DroppedEdge>* dropped) const {
+  std::vector<PairwiseEstimate> ordered;
+  for (const auto& entry : edges_) {
+    ordered.push_back(entry.second);
+  }
+  std::stable_sort(ordered.begin(), ordered.end(),
+                   [](const PairwiseEstimate& a, const PairwiseEstimate& b) {
+                     if (a.configured != b.configured) {
+                       return a.configured;
+                     }
+                     return a.verification > b.verification;
+                   });
+  ConnectedGroups groups;
+  std::vector<PairwiseEstimate> kept;
+  for (const PairwiseEstimate& edge : ordered) {
+    const auto [group_from, T_g_from] = groups.locate(edge.from);
+    const auto [group_to, T_g_to] = groups.locate(edge.to);
+    if (group_from != group_to) {
+      groups.join(edge.from, edge.to, edge.T_to_from);
+      kept.push_back(edge);
+      continue;
+    }
+    // A loop: the edge against the path of the edges already taken.
+    const SE2 along_loop = T_g_to.inverse() * T_g_from;
+    const double translation = (along_loop.translation() - edge.T_to_from.translation()).norm();
+    const double rotation = std::abs(wrapAngle(along_loop.theta() - edge.T_to_from.theta()));
+    if (edge.configured ||
+        (translation <= tolerance_.translation_m && rotation <= tolerance_.rotation_rad)) {
+      kept.push_back(edge);
+    } else if (dropped != nullptr) {
+      dropped->push_back({edge, translation, rotation});
+    }
+  }
+  return kept;
+}
+
+std::vector<DroppedEdge> TeamGraph::dropped() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<DroppedEdge> dropped;
+  consistentEdges(&dropped);
+  return dropped;
+}
 
 TeamGraph::PairKey TeamGraph::keyOf(const std::string& a, const std::string& b) {
   return a < b ? PairKey{a, b} : PairKey{b, a};
@@ -89,6 +165,7 @@ std::vector<Placement> TeamGraph::place(const std::string& reference,
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> frontier;
   frontier.push({0.0, reference});
   std::set<std::string> done;
+  const std::vector<PairwiseEstimate> kept = consistentEdges(nullptr);
   while (!frontier.empty()) {
     const auto [cost, robot] = frontier.top();
     frontier.pop();
@@ -96,8 +173,7 @@ std::vector<Placement> TeamGraph::place(const std::string& reference,
       continue;
     }
     const Reached here = reached[robot];
-    for (const auto& entry : edges_) {
-      const PairwiseEstimate& edge = entry.second;
+    for (const PairwiseEstimate& edge : kept) {
       if (edge.from != robot && edge.to != robot) {
         continue;
       }

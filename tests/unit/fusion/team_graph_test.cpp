@@ -65,5 +65,60 @@ TEST(TeamGraphTest, PlacesThroughThePathWithTheLargestProductOfV) {
   EXPECT_DOUBLE_EQ(*placements[0].verification, 0.95);
 }
 
+TEST(TeamGraphTest, AnEdgeThatBreaksALoopIsDroppedAndReported) {
+  // Three robots: a-b and b-c right, a-c a wrong merge (2 m and 20° off), less well verified.
+  const SE2 T_a_b(4.0, 1.0, 0.5);
+  const SE2 T_b_c(3.0, -2.0, -1.0);
+  const SE2 wrong_T_a_c = T_a_b * T_b_c * SE2(2.0, 0.0, 20.0 * M_PI / 180.0);
+  TeamGraph graph;
+  graph.addVerified(estimateOf("b", "a", T_a_b, 0.97));
+  graph.addVerified(estimateOf("c", "b", T_b_c, 0.96));
+  graph.addVerified(estimateOf("c", "a", wrong_T_a_c, 0.93));
+  const std::vector<DroppedEdge> dropped = graph.dropped();
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_EQ(dropped[0].estimate.verification, 0.93);
+  // In the direction it is reported: the origin of `from` as the loop and the edge put it.
+  const SE2 T_c_a = (T_a_b * T_b_c).inverse();
+  const bool c_in_a = dropped[0].estimate.to == "a";
+  const SE2 by_loop = c_in_a ? T_c_a.inverse() : T_c_a;
+  const SE2 by_edge = c_in_a ? wrong_T_a_c : wrong_T_a_c.inverse();
+  EXPECT_NEAR(dropped[0].translation_error_m,
+              (by_loop.translation() - by_edge.translation()).norm(), 1e-9);
+  EXPECT_GT(dropped[0].translation_error_m, 1.0);
+  EXPECT_NEAR(dropped[0].rotation_error_rad, 20.0 * M_PI / 180.0, 1e-9);
+  // c is placed through b, not through the wrong edge.
+  const auto placements = graph.place("a", {"c"});
+  ASSERT_TRUE(placements[0].placed);
+  expectPose(placements[0].T_reference_robot, T_a_b * T_b_c);
+  EXPECT_DOUBLE_EQ(*placements[0].verification, 0.96);
+}
+
+TEST(TeamGraphTest, EdgesThatCloseALoopWithinTheToleranceAreAllKept) {
+  const SE2 T_a_b(4.0, 1.0, 0.5);
+  const SE2 T_b_c(3.0, -2.0, -1.0);
+  TeamGraph graph;
+  graph.addVerified(estimateOf("b", "a", T_a_b, 0.97));
+  graph.addVerified(estimateOf("c", "b", T_b_c, 0.96));
+  // 5 cm and 0.5° off the loop: map noise, not a wrong merge.
+  graph.addVerified(estimateOf("c", "a", T_a_b * T_b_c * SE2(0.05, 0.0, 0.5 * M_PI / 180.0), 0.99));
+  EXPECT_TRUE(graph.dropped().empty());
+  // With a looser V on a-b, the loop is still whole; c goes through the best path (a-c).
+  const auto placements = graph.place("a", {"b", "c"});
+  EXPECT_TRUE(placements[0].placed);
+  EXPECT_TRUE(placements[1].placed);
+  EXPECT_DOUBLE_EQ(*placements[1].verification, 0.99);
+}
+
+TEST(TeamGraphTest, AConfiguredTransformIsNeverDroppedByALoop) {
+  TeamGraph graph;
+  graph.addConfigured("b", "a", SE2(4.0, 0.0, 0.0));
+  graph.addConfigured("c", "b", SE2(4.0, 0.0, 0.0));
+  graph.addVerified(estimateOf("c", "a", SE2(1.0, 0.0, 0.0), 0.99));  // disagrees with config
+  const std::vector<DroppedEdge> dropped = graph.dropped();
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_EQ(dropped[0].estimate.method, "test");
+  expectPose(graph.place("a", {"c"})[0].T_reference_robot, SE2(8.0, 0.0, 0.0));
+}
+
 }  // namespace
 }  // namespace mrslam::fusion

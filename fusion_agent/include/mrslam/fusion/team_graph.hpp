@@ -7,7 +7,13 @@
 // Robots are placed through the best path from the reference robot: the path whose product of
 // verification indices is largest (configured edges count as V = 1). A robot with no path to the
 // reference is reported as not placed, never guessed.
+//
+// Loops (three or more robots): edges are taken in order of confidence (configured first, then
+// by V); an edge that joins two robots already connected by the edges taken must agree with the
+// transform along them within the loop tolerance, or it is dropped and reported — one wrong
+// merge in a loop of right ones cannot move a robot.
 
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -31,8 +37,23 @@ struct PairwiseEstimate {
   bool configured = false;
 };
 
+/// An edge the loop check dropped, and why.
+struct DroppedEdge {
+  PairwiseEstimate estimate;
+  /// Where it and the loop's other edges put `from`'s map origin in `to`'s frame: the distance
+  /// between the two, and the difference of their headings.
+  double translation_error_m = 0.0;
+  double rotation_error_rad = 0.0;
+};
+
+struct LoopTolerance {
+  double translation_m = 0.25;  ///< largest disagreement of an edge with a loop, in translation
+  double rotation_rad = 2.0 * M_PI / 180.0;  ///< ... and in rotation
+};
+
 class TeamGraph {
  public:
+  explicit TeamGraph(LoopTolerance tolerance = {}) : tolerance_(tolerance) {}
   /// A transform fixed by configuration (never replaced by estimates).
   void addConfigured(const std::string& from, const std::string& to, const SE2& T_to_from);
   /// Stores a verified estimate unless the pair already holds a better-verified one (or a
@@ -44,11 +65,17 @@ class TeamGraph {
   std::optional<PairwiseEstimate> estimate(const std::string& from, const std::string& to) const;
   std::vector<PairwiseEstimate> estimates() const;
 
-  /// Placement of each of `robots` in the frame of `reference`.
+  /// Placement of each of `robots` in the frame of `reference` (through the edges the loop
+  /// check keeps).
   std::vector<Placement> place(const std::string& reference,
                                const std::vector<std::string>& robots) const;
+  /// The edges the loop check drops now.
+  std::vector<DroppedEdge> dropped() const;
 
  private:
+  /// Splits the edges into those that agree with the loops they close and those that do not.
+  std::vector<PairwiseEstimate> consistentEdges(std::vector<DroppedEdge>* dropped) const;
+  LoopTolerance tolerance_;
   using PairKey = std::pair<std::string, std::string>;  // ordered (smaller id first)
   static PairKey keyOf(const std::string& a, const std::string& b);
 
