@@ -57,11 +57,11 @@ void logEkfSummary(const std::string& robot_id, const mrslam::robot::EkfEstimato
   const mrslam::robot::EkfCounters& c = ekf.counters();
   spdlog::info(
       "{}: EKF: {} scans, {} matches accepted, {} gated out, {} failed; {} keyframes; IMU "
-      "heading {}/{} and yaw rate {}/{} accepted/gated, {} late IMU samples dropped, {} IMU "
-      "gaps; gyro bias {:.5f} rad/s",
+      "heading {}/{} and yaw rate {}/{} accepted/gated, {} heading recoveries, {} late IMU "
+      "samples dropped, {} IMU gaps; gyro bias {:.5f} rad/s",
       robot_id, c.scans, c.scan_updates, c.scan_rejections, c.scan_match_failures, c.keyframes,
       c.heading_updates, c.heading_rejections, c.yaw_rate_updates, c.yaw_rate_rejections,
-      c.late_imu, c.imu_gaps, ekf.gyroBias());
+      c.heading_recoveries, c.late_imu, c.imu_gaps, ekf.gyroBias());
 }
 
 void writeOutputs(const Options& options, const mrslam::robot::RobotPipeline& pipeline,

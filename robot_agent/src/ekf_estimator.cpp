@@ -180,6 +180,17 @@ void EkfEstimator::updateHeading(const ImuSample& imu) {
   const Correction correction =
       filter_.correct<1>(y, H, Eigen::Matrix<double, 1, 1>(sigma * sigma), gate_1dof_sq_);
   ++(correction.accepted ? counters_.heading_updates : counters_.heading_rejections);
+  if (correction.accepted) {
+    gated_heading_since_.reset();
+  } else if (!gated_heading_since_) {
+    gated_heading_since_ = imu.stamp;
+  } else if (secondsBetween(*gated_heading_since_, imu.stamp) >= settings_.imu.heading_recovery_s) {
+    // A stabilised heading that disagrees this long is a heading estimate gone astray (a wrong
+    // scan match): open its variance by the disagreement so the next readings pull it back.
+    filter_.addVariance(state::kTheta, y(0) * y(0) + sigma * sigma);
+    ++counters_.heading_recoveries;
+    gated_heading_since_.reset();
+  }
 }
 
 void EkfEstimator::updateYawRate(const ImuSample& imu) {

@@ -20,6 +20,8 @@ ImuSettings loadImu(const Config& section) {
   imu.bias_walk_rad_s_sqrt_s =
       section.getDouble("bias_walk_rad_s_sqrt_s", imu.bias_walk_rad_s_sqrt_s, {0, 1});
   imu.max_gap_s = section.getDouble("max_gap_s", imu.max_gap_s, {1e-3, 60});
+  imu.heading_recovery_s =
+      section.getDouble("heading_recovery_s", imu.heading_recovery_s, {0.1, 3600});
   return imu;
 }
 

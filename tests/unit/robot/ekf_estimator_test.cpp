@@ -144,6 +144,35 @@ TEST(EkfEstimatorTest, ImuHeadingCorrectsTheOdometryHeadingAndAnOutlierIsGatedOu
   EXPECT_EQ(ekf.pose().theta(), before);
 }
 
+TEST(EkfEstimatorTest, AHeadingGoneAstrayIsPulledBackByTheImuAfterTheRecoveryTime) {
+  EkfSettings settings = noLaser();
+  settings.imu.use_yaw_rate = false;
+  settings.imu.heading_sigma_rad = 0.01;
+  settings.imu.heading_recovery_s = 2.0;
+  settings.odometry.rotation_per_rad = 0.01;  // odometry trusted on turns, as after ICP
+  EkfEstimator ekf(platform(), SensorMounting{}, settings);
+  ekf.addImu(imuAt(0, 0.0, 0.0));
+  // The estimate turns 30° that the robot did not (a wrong match); the IMU says 0 throughout.
+  ekf.addOdometry({Stamp{100'000'000}, SE2()});
+  ekf.addOdometry({Stamp{200'000'000}, SE2(0.0, 0.0, 30.0 * kDeg)});
+  std::int64_t t = 200'000'000;
+  for (int i = 1; i <= 15; ++i) {  // 1.5 s: the readings are gated out, the heading stays
+    t += 100'000'000;
+    ekf.addOdometry({Stamp{t}, SE2(0.0, 0.0, 30.0 * kDeg)});
+    ekf.addImu(imuAt(t, 0.0, 0.0));
+  }
+  EXPECT_NEAR(ekf.pose().theta(), 30.0 * kDeg, 1.0 * kDeg);
+  EXPECT_EQ(ekf.counters().heading_recoveries, 0u);
+  for (int i = 1; i <= 15; ++i) {  // past 2 s of disagreement the IMU pulls it back
+    t += 100'000'000;
+    ekf.addOdometry({Stamp{t}, SE2(0.0, 0.0, 30.0 * kDeg)});
+    ekf.addImu(imuAt(t, 0.0, 0.0));
+  }
+  EXPECT_EQ(ekf.counters().heading_recoveries, 1u);
+  EXPECT_NEAR(ekf.pose().theta(), 0.0, 2.0 * kDeg);
+  EXPECT_GT(ekf.counters().heading_updates, 5u);
+}
+
 TEST(EkfEstimatorTest, YawRateEstimatesTheGyroBias) {
   EkfSettings settings = noLaser();
   settings.imu.heading_sigma_rad = 0.005;

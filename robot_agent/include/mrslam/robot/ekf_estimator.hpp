@@ -52,6 +52,9 @@ struct ImuSettings {
   double initial_bias_sigma_rad_s = 0.01;      ///< prior σ of the gyro bias (mean 0)
   double bias_walk_rad_s_sqrt_s = 1e-4;        ///< random walk of the bias, σ per √s
   double max_gap_s = 0.5;                      ///< longer IMU gaps give no yaw-rate update
+  /// After this long with every stabilised-yaw reading gated out, the estimate (not the
+  /// compass) is taken to be wrong: its heading variance opens so the readings pull it back.
+  double heading_recovery_s = 2.0;
 };
 
 struct EkfSettings {
@@ -78,8 +81,9 @@ struct EkfCounters {
   std::uint64_t heading_rejections = 0;
   std::uint64_t yaw_rate_updates = 0;
   std::uint64_t yaw_rate_rejections = 0;
-  std::uint64_t late_imu = 0;  ///< IMU samples older than the newest stamp: dropped
-  std::uint64_t imu_gaps = 0;  ///< IMU intervals ≤ 0 or > max_gap_s: no yaw-rate update
+  std::uint64_t late_imu = 0;            ///< IMU samples older than the newest stamp: dropped
+  std::uint64_t imu_gaps = 0;            ///< IMU intervals ≤ 0 or > max_gap_s: no yaw-rate update
+  std::uint64_t heading_recoveries = 0;  ///< heading_recovery_s of gated yaw: variance opened
   /// Σ yᵀS⁻¹y of the accepted scan updates: ÷ scan_updates is near 3 when the noise is right.
   double scan_nis_sum = 0.0;
 };
@@ -146,7 +150,8 @@ class EkfEstimator : public PoseEstimator {
   std::optional<SE2> last_scan_pose_;  ///< T_map_robot at the previous scan
   SE2 last_scan_motion_;               ///< between the two previous scans
   std::optional<ImuSample> last_imu_;
-  bool heading_aligned_ = false;  ///< the IMU heading offset α is initialised
+  bool heading_aligned_ = false;              ///< the IMU heading offset α is initialised
+  std::optional<Stamp> gated_heading_since_;  ///< first of the yaw readings gated in a row
   std::optional<Stamp> newest_stamp_;
 };
 
