@@ -142,6 +142,7 @@ MergeAttempt MergeScheduler::mergePair(const RobotMap& from, const RobotMap& to)
     estimate.verification = attempt.result.verification;
     estimate.entropy = attempt.result.entropy;
     estimate.method = attempt.result.method;
+    estimate.from_final_maps = from.is_final && to.is_final;
     const bool stored = graph_.addVerified(estimate);
     spdlog::info("fusion: {} → {} merged by {} (V {:.3f}, {:.0f} ms){}", from.robot_id, to.robot_id,
                  estimate.method, estimate.verification, attempt.time_ms,

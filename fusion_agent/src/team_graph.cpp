@@ -122,9 +122,15 @@ bool TeamGraph::addVerified(const PairwiseEstimate& estimate) {
   std::lock_guard<std::mutex> lock(mutex_);
   const PairKey key = keyOf(estimate.from, estimate.to);
   const auto found = edges_.find(key);
-  if (found != edges_.end() &&
-      (found->second.configured || found->second.verification > estimate.verification)) {
-    return false;
+  if (found != edges_.end()) {
+    const PairwiseEstimate& held = found->second;
+    const bool held_is_better = held.configured ||
+                                (held.from_final_maps && !estimate.from_final_maps) ||
+                                (held.from_final_maps == estimate.from_final_maps &&
+                                 held.verification > estimate.verification);
+    if (held_is_better) {
+      return false;
+    }
   }
   edges_[key] = key.first == estimate.from ? estimate : inverted(estimate);
   return true;

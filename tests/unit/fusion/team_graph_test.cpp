@@ -54,6 +54,20 @@ TEST(TeamGraphTest, KeepsTheBetterVerifiedEstimateAndNeverReplacesConfiguredOnes
   EXPECT_FALSE(placements[0].verification.has_value());
 }
 
+TEST(TeamGraphTest, AMergeOfFinalMapsReplacesEarlierOnesWhateverTheirV) {
+  TeamGraph graph;
+  EXPECT_TRUE(graph.addVerified(estimateOf("b", "a", SE2(1.0, 0, 0), 0.99)));  // early, small
+  PairwiseEstimate final_merge = estimateOf("b", "a", SE2(1.05, 0, 0), 0.95);
+  final_merge.from_final_maps = true;
+  EXPECT_TRUE(graph.addVerified(final_merge));
+  expectPose(graph.estimate("b", "a")->T_to_from, SE2(1.05, 0, 0));
+  EXPECT_FALSE(graph.addVerified(estimateOf("b", "a", SE2(0.9, 0, 0), 0.999)));  // not final
+  PairwiseEstimate better_final = estimateOf("b", "a", SE2(1.04, 0, 0), 0.96);
+  better_final.from_final_maps = true;
+  EXPECT_TRUE(graph.addVerified(better_final));  // among final merges, V decides
+  expectPose(graph.estimate("b", "a")->T_to_from, SE2(1.04, 0, 0));
+}
+
 TEST(TeamGraphTest, PlacesThroughThePathWithTheLargestProductOfV) {
   TeamGraph graph;
   // a-b direct but weak (0.6); a-c-b strong (0.95 · 0.95 = 0.90).

@@ -35,6 +35,7 @@ struct PairwiseEstimate {
   double entropy = 0.0;
   std::string method;  ///< "config", "seed", "feature", ...
   bool configured = false;
+  bool from_final_maps = false;  ///< merged from both robots' final maps (every scan in them)
 };
 
 /// An edge the loop check dropped, and why.
@@ -56,8 +57,10 @@ class TeamGraph {
   explicit TeamGraph(LoopTolerance tolerance = {}) : tolerance_(tolerance) {}
   /// A transform fixed by configuration (never replaced by estimates).
   void addConfigured(const std::string& from, const std::string& to, const SE2& T_to_from);
-  /// Stores a verified estimate unless the pair already holds a better-verified one (or a
-  /// configured one). Returns whether it was stored.
+  /// Stores a verified estimate unless the pair already holds a better one: a configured one,
+  /// one from final maps when this one is not (final maps hold every scan: their merge is the
+  /// best informed, whatever an earlier, smaller overlap's V), or one of the same kind with a
+  /// higher V. Returns whether it was stored.
   bool addVerified(const PairwiseEstimate& estimate);
 
   /// The stored estimate between two robots, expressed as T_to_from (inverted when stored the
