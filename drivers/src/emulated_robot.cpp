@@ -159,6 +159,11 @@ void EmulatedRobot::bringUpImu(const ImuSample& first) {
   }
   Gx1EmulatorSettings imu;
   imu.link_path = devices_.imu_path;
+  // Frames every two timer ticks, the timer stepping two ticks a frame: the device's time stamps
+  // then space its frames as they are sent. (A 10 ms interval against 6.5536 ms ticks stamped
+  // frames one or two ticks apart, ±35 % of the true spacing, which the yaw rate took for bias.)
+  imu.ticks_per_frame = 2;
+  imu.continuous_interval = std::chrono::microseconds(std::llround(2.0 * imu.tick_period_s * 1e6));
   std::weak_ptr<LatestReadings> latest = live_->latest;
   live_->imu = std::make_unique<Gx1Emulator>(imu, [latest] {
     const auto readings = latest.lock();
