@@ -4,6 +4,7 @@
 #   scripts/setup.sh            install + build everything
 #   MRSLAM_BUILD_DIR=dir        build folder (default: build/ in the project)
 #   MRSLAM_JOBS=n               parallel build jobs (default: 2)
+#   MRSLAM_SETUP_TESTS=1        also what the tests need (Chromium, for the live viewer's test)
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -17,8 +18,13 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libopencv-features2d-dev libopencv-calib3d-dev
   liboctomap-dev libyaml-cpp-dev libspdlog-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
+  libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
+# The tests also drive the live viewer in a headless browser.
+if [ "${MRSLAM_SETUP_TESTS:-0}" = 1 ]; then
+  packages+=(chromium)
+fi
 
 missing=()
 for package in "${packages[@]}"; do

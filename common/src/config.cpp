@@ -12,10 +12,15 @@ namespace mrslam {
 struct Config::Document {
   std::string file_name;
   YAML::Node root;
-  std::set<std::string> keys_read;  // full dotted keys ("laser.max_range_m", "robots[2].id")
+  std::set<std::string> keys_read;    // full dotted keys ("laser.max_range_m", "robots[2].id")
+  std::set<std::string> keys_tested;  // keys has() was asked for, while a ConfigKeyLog records
 };
 
 namespace {
+
+bool hasBounds(Range range) {
+  return std::isfinite(range.min) || std::isfinite(range.max);
+}
 
 std::string describeNumberRange(Range range) {
   std::ostringstream text;
@@ -104,8 +109,29 @@ void Config::fail(const std::string& key, const std::string& what) const {
   failAt(child(key), key, what);
 }
 
-bool Config::has(const std::string& key) const {
+bool Config::present(const std::string& key) const {
   return static_cast<bool>(child(key));
+}
+
+bool Config::has(const std::string& key) const {
+  if (ConfigKeyLog::recording()) {
+    document_->keys_tested.insert(fullKey(key));
+  }
+  return present(key);
+}
+
+void Config::record(const std::string& key, ConfigKeyKind kind, std::string default_text,
+                    Range range, std::vector<std::string> choices) const {
+  ConfigKeyUse use;
+  use.file = document_->file_name;
+  use.key = fullKey(key);
+  use.kind = kind;
+  use.default_text = document_->keys_tested.count(use.key) != 0 ? "unset" : std::move(default_text);
+  use.choices = std::move(choices);
+  if (hasBounds(range)) {
+    use.range = "[" + yamlNumber(range.min) + ", " + yamlNumber(range.max) + "]";
+  }
+  ConfigKeyLog::record(std::move(use));
 }
 
 double Config::readNumber(const std::string& key, Range range, bool integral) const {
@@ -135,30 +161,45 @@ double Config::readNumber(const std::string& key, Range range, bool integral) co
 }
 
 double Config::getDouble(const std::string& key, double default_value, Range range) const {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kNumber, yamlNumber(default_value), range);
+  }
   document_->keys_read.insert(fullKey(key));
-  return has(key) ? readNumber(key, range, false) : default_value;
+  return present(key) ? readNumber(key, range, false) : default_value;
 }
 
 double Config::requireDouble(const std::string& key, Range range) const {
-  if (!has(key)) {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kNumber, "required", range);
+  }
+  if (!present(key)) {
     failAt(node_, key, "is required");
   }
   return readNumber(key, range, false);
 }
 
 long long Config::getInt(const std::string& key, long long default_value, Range range) const {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kInteger, std::to_string(default_value), range);
+  }
   document_->keys_read.insert(fullKey(key));
-  return has(key) ? static_cast<long long>(readNumber(key, range, true)) : default_value;
+  return present(key) ? static_cast<long long>(readNumber(key, range, true)) : default_value;
 }
 
 long long Config::requireInt(const std::string& key, Range range) const {
-  if (!has(key)) {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kInteger, "required", range);
+  }
+  if (!present(key)) {
     failAt(node_, key, "is required");
   }
   return static_cast<long long>(readNumber(key, range, true));
 }
 
 bool Config::getBool(const std::string& key, bool default_value) const {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kBool, default_value ? "true" : "false");
+  }
   document_->keys_read.insert(fullKey(key));
   const YAML::Node node = child(key);
   if (!node) {
@@ -177,6 +218,13 @@ bool Config::getBool(const std::string& key, bool default_value) const {
 }
 
 std::string Config::getString(const std::string& key, const std::string& default_value) const {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kString, yamlString(default_value));
+  }
+  return readString(key, default_value);
+}
+
+std::string Config::readString(const std::string& key, const std::string& default_value) const {
   document_->keys_read.insert(fullKey(key));
   const YAML::Node node = child(key);
   if (!node) {
@@ -189,10 +237,13 @@ std::string Config::getString(const std::string& key, const std::string& default
 }
 
 std::string Config::requireString(const std::string& key) const {
-  if (!has(key)) {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kString, "required");
+  }
+  if (!present(key)) {
     failAt(node_, key, "is required");
   }
-  const std::string value = getString(key, "");
+  const std::string value = readString(key, "");
   if (value.empty()) {
     fail(key, "must not be empty");
   }
@@ -206,7 +257,10 @@ std::string Config::getChoice(const std::string& key, const std::string& default
 
 std::string Config::getChoice(const std::string& key, const std::string& default_value,
                               const std::vector<std::string>& allowed) const {
-  const std::string value = getString(key, default_value);
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kChoice, yamlString(default_value), {}, allowed);
+  }
+  const std::string value = readString(key, default_value);
   std::string choices;
   for (const std::string& choice : allowed) {
     if (value == choice) {
@@ -221,6 +275,9 @@ std::string Config::getChoice(const std::string& key, const std::string& default
 std::vector<double> Config::getDoubles(const std::string& key,
                                        const std::vector<double>& default_value, std::size_t size,
                                        Range range) const {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kNumbers, yamlNumbers(default_value), range);
+  }
   document_->keys_read.insert(fullKey(key));
   const YAML::Node node = child(key);
   if (!node) {
@@ -251,11 +308,19 @@ std::vector<double> Config::getDoubles(const std::string& key,
 
 std::string Config::getExpandedString(const std::string& key,
                                       const std::string& default_value) const {
-  if (!has(key)) {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kString, yamlString(default_value));
+  }
+  return readExpandedString(key, default_value);
+}
+
+std::string Config::readExpandedString(const std::string& key,
+                                       const std::string& default_value) const {
+  if (!present(key)) {
     document_->keys_read.insert(fullKey(key));
     return default_value;
   }
-  const std::string text = getString(key, default_value);
+  const std::string text = readString(key, default_value);
   std::string expanded;
   std::size_t at = 0;
   while (at < text.size()) {
@@ -280,10 +345,13 @@ std::string Config::getExpandedString(const std::string& key,
 }
 
 std::string Config::requirePath(const std::string& key) const {
-  if (!has(key)) {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kPath, "required");
+  }
+  if (!present(key)) {
     failAt(node_, key, "is required");
   }
-  const std::string value = getPath(key, "");
+  const std::string value = readPath(key, "");
   if (value.empty()) {
     fail(key, "must not be empty");
   }
@@ -291,11 +359,25 @@ std::string Config::requirePath(const std::string& key) const {
 }
 
 std::string Config::getPath(const std::string& key, const std::string& default_value) const {
-  if (!has(key)) {
+  if (ConfigKeyLog::recording()) {
+    // A default under the config's folder as one would write it: relative to that folder.
+    std::string as_written = default_value;
+    const std::filesystem::path relative =
+        std::filesystem::path(default_value).lexically_relative(folder());
+    if (!default_value.empty() && !relative.empty() && *relative.begin() != "..") {
+      as_written = relative.string();
+    }
+    record(key, ConfigKeyKind::kPath, yamlString(as_written));
+  }
+  return readPath(key, default_value);
+}
+
+std::string Config::readPath(const std::string& key, const std::string& default_value) const {
+  if (!present(key)) {
     document_->keys_read.insert(fullKey(key));
     return default_value;
   }
-  const std::string value = getExpandedString(key, default_value);
+  const std::string value = readExpandedString(key, default_value);
   if (value.empty()) {
     return value;
   }
@@ -305,6 +387,9 @@ std::string Config::getPath(const std::string& key, const std::string& default_v
 }
 
 Config Config::section(const std::string& key) const {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kSection, "{}");
+  }
   document_->keys_read.insert(fullKey(key));
   const YAML::Node node = child(key);
   if (!node || node.IsNull()) {
@@ -317,6 +402,9 @@ Config Config::section(const std::string& key) const {
 }
 
 std::vector<Config> Config::sectionList(const std::string& key) const {
+  if (ConfigKeyLog::recording()) {
+    record(key, ConfigKeyKind::kSectionList, "[]");
+  }
   document_->keys_read.insert(fullKey(key));
   const YAML::Node node = child(key);
   std::vector<Config> items;

@@ -22,13 +22,8 @@ cv::Point toPixel(const GridGeometry& g, const Eigen::Vector2d& point_m) {
                    static_cast<int>(std::lround(row * scale)));
 }
 
-}  // namespace
-
-void saveMapPng(const GridMap& map, const std::string& png_path,
-                const std::vector<MapOverlay>& overlays) {
-  if (!map.isValid() || map.geometry.cellCount() == 0) {
-    throw MapIoError(png_path + ": refusing to save an invalid or empty map");
-  }
+/// The picture of saveMapPng as a BGR image.
+cv::Mat renderMap(const GridMap& map, const std::vector<MapOverlay>& overlays) {
   const GridGeometry& g = map.geometry;
   cv::Mat image(g.height, g.width, CV_8UC3);
   for (int row = 0; row < g.height; ++row) {
@@ -69,6 +64,17 @@ void saveMapPng(const GridMap& map, const std::string& png_path,
     }
     cv::polylines(image, points, false, colour, 1, cv::LINE_8, kSubpixelBits);
   }
+  return image;
+}
+
+}  // namespace
+
+void saveMapPng(const GridMap& map, const std::string& png_path,
+                const std::vector<MapOverlay>& overlays) {
+  if (!map.isValid() || map.geometry.cellCount() == 0) {
+    throw MapIoError(png_path + ": refusing to save an invalid or empty map");
+  }
+  const cv::Mat image = renderMap(map, overlays);
   bool written = false;
   try {
     written = cv::imwrite(png_path, image);
@@ -78,6 +84,18 @@ void saveMapPng(const GridMap& map, const std::string& png_path,
   if (!written) {
     throw MapIoError(png_path + ": cannot write");
   }
+}
+
+std::vector<std::uint8_t> encodeMapPng(const GridMap& map,
+                                       const std::vector<MapOverlay>& overlays) {
+  if (!map.isValid() || map.geometry.cellCount() == 0) {
+    throw MapIoError("refusing to encode an invalid or empty map");
+  }
+  std::vector<std::uint8_t> png;
+  if (!cv::imencode(".png", renderMap(map, overlays), png)) {
+    throw MapIoError("PNG encoding failed");
+  }
+  return png;
 }
 
 }  // namespace mrslam

@@ -16,7 +16,13 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-FusionLoop::FusionLoop(const FusionConfig& config) : config_(config), node_(config, store_) {
+FusionLoop::FusionLoop(const FusionConfig& config)
+    : config_(config),
+      viewer_model_(config.viewer.enabled ? std::make_unique<ViewerModel>() : nullptr),
+      node_(config, store_, viewer_model_.get()) {
+  if (viewer_model_) {
+    viewer_ = std::make_unique<LiveViewer>(config.viewer, *viewer_model_);
+  }
   for (const auto& [robot_id, T_reference_robot] : config.fixed_transforms) {
     graph_.addConfigured(robot_id, config.reference_robot, T_reference_robot);
   }
@@ -52,6 +58,9 @@ void FusionLoop::publishAttempts() {
   }
   for (const MergeAttempt& attempt : scheduler_->takeAttempts()) {
     node_.publishAttempt(attempt);
+    if (viewer_model_) {
+      viewer_model_->addAttempt(attempt);
+    }
     changed_ = changed_ || attempt.result.accepted;
   }
 }
@@ -66,6 +75,9 @@ void FusionLoop::publish() {
   result_ = buildGlobalMap(maps_, reference, graph_.place(reference, robot_ids), config_.composer);
   reportDroppedEdges();
   node_.publish(result_, ++sequence_);
+  if (viewer_model_) {
+    viewer_model_->setGlobalMap(result_, maps_);
+  }
   written_ = false;
 }
 

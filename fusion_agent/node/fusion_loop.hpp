@@ -8,6 +8,7 @@
 #include <set>
 
 #include "fusion_node.hpp"
+#include "live_viewer.hpp"
 #include "mrslam/fusion/merge_scheduler.hpp"
 #include "mrslam/fusion/team_graph.hpp"
 
@@ -36,8 +37,10 @@ class FusionLoop {
   const FusionConfig& config_;
   RobotMapStore store_;
   TeamGraph graph_;
-  std::set<std::string> reported_drops_;  ///< "from>to" of edges the loop check dropped
+  std::set<std::string> reported_drops_;       ///< "from>to" of edges the loop check dropped
+  std::unique_ptr<ViewerModel> viewer_model_;  ///< set when the live viewer is on
   FusionNode node_;
+  std::unique_ptr<LiveViewer> viewer_;
   std::unique_ptr<MergeScheduler> scheduler_;
   std::vector<RobotMap> maps_;
   GlobalMapResult result_;

@@ -36,8 +36,11 @@ const char* stateName(msg::RobotState state) {
 
 }  // namespace
 
-FusionNode::FusionNode(const FusionConfig& config, RobotMapStore& store)
-    : config_(config), store_(store), participant_(config.dds, "fusion_agent " + config.fusion_id) {
+FusionNode::FusionNode(const FusionConfig& config, RobotMapStore& store, ViewerModel* viewer)
+    : config_(config),
+      store_(store),
+      viewer_(viewer),
+      participant_(config.dds, "fusion_agent " + config.fusion_id) {
   global_map_writer_ = participant_.createWriter<msg::GlobalMapPubSubType>(
       dds::kGlobalMapTopic, dds::kStateWriterProfile);
   transforms_writer_ = participant_.createWriter<msg::PairwiseTransformPubSubType>(
@@ -161,13 +164,35 @@ void FusionNode::receiveMaps(DataReader* reader) {
   }
 }
 
+namespace {
+
+RobotHealth healthOf(const msg::RobotStatus& message) {
+  RobotHealth health;
+  health.state = stateName(message.state());
+  health.message = message.message();
+  health.scans_processed = message.scans_processed();
+  health.malformed_records = message.malformed_records();
+  health.maps_published = message.maps_published();
+  for (const msg::SensorHealth& sensor : message.sensors()) {
+    health.sensors.push_back({sensor.name(), sensor.source(), sensor.healthy(), sensor.rate_hz(),
+                              sensor.samples(), sensor.errors()});
+  }
+  return health;
+}
+
+}  // namespace
+
 void FusionNode::receiveStatus(DataReader* reader) {
   msg::RobotStatus message;
   SampleInfo info;
   while (reader->take_next_sample(&message, &info) == ReturnCode_t::RETCODE_OK) {
-    if (info.valid_data) {
-      spdlog::debug("fusion: {} is {}: {} ({} scans)", message.robot_id(),
-                    stateName(message.state()), message.message(), message.scans_processed());
+    if (!info.valid_data) {
+      continue;
+    }
+    spdlog::debug("fusion: {} is {}: {} ({} scans)", message.robot_id(), stateName(message.state()),
+                  message.message(), message.scans_processed());
+    if (viewer_ && isValidRobotId(message.robot_id())) {
+      viewer_->setHealth(message.robot_id(), healthOf(message));
     }
   }
 }

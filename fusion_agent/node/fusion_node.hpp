@@ -13,12 +13,14 @@
 #include "mrslam/fusion/global_map_builder.hpp"
 #include "mrslam/fusion/merge_scheduler.hpp"
 #include "mrslam/fusion/robot_map_store.hpp"
+#include "mrslam/fusion/viewer_model.hpp"
 
 namespace mrslam::fusion {
 
 class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
  public:
-  FusionNode(const FusionConfig& config, RobotMapStore& store);
+  /// `viewer` (may be null) is told each robot's status.
+  FusionNode(const FusionConfig& config, RobotMapStore& store, ViewerModel* viewer = nullptr);
   ~FusionNode() override;
 
   /// The global map, and with it the agent's health on mrslam/fusion_status.
@@ -51,6 +53,7 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
 
   const FusionConfig& config_;
   RobotMapStore& store_;
+  ViewerModel* const viewer_;
   ErrorCounter rejected_{"fusion: local map refused"};
   dds::Participant participant_;
   eprosima::fastdds::dds::DataReader* map_reader_ = nullptr;

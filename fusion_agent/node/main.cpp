@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   std::string security_dir;
   std::string security_identity;
   std::string log_level = "info";
+  int viewer_port = -1;
   app.add_option("--config", config_path, "fusion config YAML")->required();
   app.add_option("--domain", domain, "DDS domain id (overrides the config)")
       ->check(CLI::Range(0, 232));
@@ -35,6 +36,9 @@ int main(int argc, char** argv) {
   app.add_option("--security-identity", security_identity,
                  "the identity to prove (default: the config's, else \"fusion\")");
   app.add_option("--max-runtime", max_runtime, "give up after this many seconds (0: never)");
+  app.add_option("--viewer-port", viewer_port,
+                 "serve the live viewer on this local HTTP port (0: any free port)")
+      ->check(CLI::Range(0, 65535));
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");
   app.set_version_flag("--version", mrslam::versionLine("fusion_agent"));
   CLI11_PARSE(app, argc, argv);
@@ -57,6 +61,10 @@ int main(int argc, char** argv) {
       config.dds.security_identity = security_identity;
     } else if (config.dds.security_identity.empty()) {
       config.dds.security_identity = "fusion";
+    }
+    if (viewer_port >= 0) {
+      config.viewer.enabled = true;
+      config.viewer.port = viewer_port;
     }
     if (max_runtime >= 0.0) {
       config.max_runtime_s = max_runtime;

@@ -101,6 +101,13 @@ FusionConfig loadFusionConfig(const std::string& path) {
   if (fusion.ros2_frame_id.empty()) {
     ros2.fail("frame_id", "must not be empty");
   }
+  const Config viewer = config.section("viewer");
+  fusion.viewer.enabled = viewer.getBool("enabled", fusion.viewer.enabled);
+  fusion.viewer.host = viewer.getString("host", fusion.viewer.host);
+  if (fusion.viewer.host.empty()) {
+    viewer.fail("host", "must not be empty");
+  }
+  fusion.viewer.port = static_cast<int>(viewer.getInt("port", fusion.viewer.port, {0.0, 65535.0}));
   config.checkNoUnknownKeys();
   return fusion;
 }

@@ -11,13 +11,6 @@ namespace mrslam::fusion {
 
 namespace {
 
-// A distinct colour per robot (BGR) for pictures.
-Eigen::Vector3i robotColour(std::size_t index) {
-  static const Eigen::Vector3i kPalette[] = {{0, 0, 230},   {0, 160, 0},   {230, 80, 0},
-                                             {0, 170, 230}, {200, 0, 200}, {120, 120, 0}};
-  return kPalette[index % (sizeof(kPalette) / sizeof(kPalette[0]))];
-}
-
 void writeTransformsJson(const GlobalMapResult& result, const std::string& path) {
   nlohmann::json robots = nlohmann::json::array();
   for (const Placement& placement : result.placements) {
@@ -68,6 +61,31 @@ void writeReceivedJson(const std::vector<RobotMap>& maps, const std::string& pat
 
 }  // namespace
 
+Eigen::Vector3i robotColour(std::size_t index) {
+  static const Eigen::Vector3i kPalette[] = {{0, 0, 230},   {0, 160, 0},   {230, 80, 0},
+                                             {0, 170, 230}, {200, 0, 200}, {120, 120, 0}};
+  return kPalette[index % (sizeof(kPalette) / sizeof(kPalette[0]))];
+}
+
+std::vector<MapOverlay> robotOverlays(const GlobalMapResult& result,
+                                      const std::vector<RobotMap>& maps) {
+  std::vector<MapOverlay> overlays;
+  for (std::size_t i = 0; i < result.placements.size() && i < maps.size(); ++i) {
+    const Placement& placement = result.placements[i];
+    if (!placement.placed) {
+      continue;
+    }
+    MapOverlay overlay;
+    overlay.bgr = robotColour(i);
+    overlay.cells = occupiedCellsOf({&maps[i].map, placement.T_reference_robot}, result.map);
+    for (const SE2& pose : maps[i].trajectory) {
+      overlay.trajectory_m.push_back(placement.T_reference_robot * pose.translation());
+    }
+    overlays.push_back(std::move(overlay));
+  }
+  return overlays;
+}
+
 std::string chooseReference(const std::vector<RobotMap>& maps, const FusionConfig& config) {
   if (!config.reference_robot.empty()) {
     return config.reference_robot;
@@ -98,20 +116,7 @@ void writeFusionOutputs(const GlobalMapResult& result, const std::vector<RobotMa
   std::filesystem::create_directories(out);
   writeTransformsJson(result, (out / "transforms.json").string());
   if (result.map.geometry.cellCount() > 0) {
-    std::vector<MapOverlay> overlays;
-    for (std::size_t i = 0; i < result.placements.size() && i < maps.size(); ++i) {
-      const Placement& placement = result.placements[i];
-      if (!placement.placed) {
-        continue;
-      }
-      MapOverlay overlay;
-      overlay.bgr = robotColour(i);
-      overlay.cells = occupiedCellsOf({&maps[i].map, placement.T_reference_robot}, result.map);
-      for (const SE2& pose : maps[i].trajectory) {
-        overlay.trajectory_m.push_back(placement.T_reference_robot * pose.translation());
-      }
-      overlays.push_back(std::move(overlay));
-    }
+    const std::vector<MapOverlay> overlays = robotOverlays(result, maps);
     saveMapYaml(result.map, (out / "global_map.yaml").string());
     saveMapPng(result.map, (out / "global_map.png").string(), overlays);
     saveMapOctomap(result.map, (out / "global_map.bt").string());

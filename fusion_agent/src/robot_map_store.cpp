@@ -9,6 +9,7 @@ RobotMapStore::Outcome RobotMapStore::update(RobotMap map, bool restarted) {
     return Outcome::kOutdated;
   }
   map.stale = false;
+  map.received = std::chrono::steady_clock::now();
   const std::string robot_id = map.robot_id;
   maps_[robot_id] = std::move(map);
   ++version_;

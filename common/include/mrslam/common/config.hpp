@@ -1,7 +1,9 @@
 #pragma once
 // Validated YAML configuration. Every value is read by name with its type and allowed range;
 // what is wrong stops the program with `file:line: key: what is wrong`. After a loader has read
-// everything it knows, checkNoUnknownKeys() rejects every key nobody asked for.
+// everything it knows, checkNoUnknownKeys() rejects every key nobody asked for. While a
+// ConfigKeyLog exists (config_keys.hpp), every read is also recorded for the configuration
+// reference's test.
 
 #include <yaml-cpp/yaml.h>
 
@@ -11,6 +13,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "mrslam/common/config_keys.hpp"
 
 namespace mrslam {
 
@@ -34,6 +38,8 @@ class Config {
   /// Loads YAML text; `name` stands for the file name in messages.
   static Config loadString(const std::string& text, const std::string& name);
 
+  /// Whether `key` is present. A ConfigKeyLog records a key tested this way and read afterwards
+  /// as having no default ("unset"): the loader does something else when it is absent.
   bool has(const std::string& key) const;
 
   double getDouble(const std::string& key, double default_value, Range range = {}) const;
@@ -80,6 +86,14 @@ class Config {
   Config(std::shared_ptr<Document> document, YAML::Node node, std::string prefix);
 
   YAML::Node child(const std::string& key) const;
+  bool present(const std::string& key) const;
+  // The readers without recording (the public ones record, then call these).
+  std::string readString(const std::string& key, const std::string& default_value) const;
+  std::string readExpandedString(const std::string& key, const std::string& default_value) const;
+  std::string readPath(const std::string& key, const std::string& default_value) const;
+  // Records a use of `key` when a ConfigKeyLog is recording (callers check recording() first).
+  void record(const std::string& key, ConfigKeyKind kind, std::string default_text,
+              Range range = {}, std::vector<std::string> choices = {}) const;
   std::string fullKey(const std::string& key) const;
   [[noreturn]] void failAt(const YAML::Node& node, const std::string& key,
                            const std::string& what) const;

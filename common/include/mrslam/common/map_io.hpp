@@ -55,6 +55,9 @@ struct MapOverlay {
 /// (OpenCV imwrite).
 void saveMapPng(const GridMap& map, const std::string& png_path,
                 const std::vector<MapOverlay>& overlays = {});
+/// The same picture as PNG bytes (for the live viewer); MapIoError for an invalid or empty map.
+std::vector<std::uint8_t> encodeMapPng(const GridMap& map,
+                                       const std::vector<MapOverlay>& overlays = {});
 
 /// Writes an OctoMap binary tree at the grid's resolution: one voxel layer at z in
 /// [0, resolution), occupied where the cell is occupied (> 50), free where free (< 50); unknown

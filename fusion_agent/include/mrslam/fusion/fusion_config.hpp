@@ -12,6 +12,13 @@
 
 namespace mrslam::fusion {
 
+/// The live map viewer: a page on a local HTTP port.
+struct ViewerSettings {
+  bool enabled = false;            ///< serve the page
+  std::string host = "127.0.0.1";  ///< address to listen on (0.0.0.0: every interface)
+  int port = 8080;                 ///< TCP port; 0: any free port (logged)
+};
+
 struct FusionConfig {
   std::string fusion_id = "fusion";  ///< name of this fusion agent in logs and files
   std::string reference_robot;       ///< the global map's frame; empty: the first robot placed
@@ -34,6 +41,7 @@ struct FusionConfig {
   DdsSettings dds;
   bool ros2_map = true;               ///< also publish the global map on ROS 2's rt/map
   std::string ros2_frame_id = "map";  ///< its frame (the reference robot's map frame)
+  ViewerSettings viewer;
 };
 
 /// Loads and validates a fusion config; throws ConfigError (`file:line: key: what is wrong`).

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mrslam/common/map_io.hpp"
 #include "mrslam/fusion/fusion_config.hpp"
 #include "mrslam/fusion/placement.hpp"
 #include "mrslam/fusion/robot_map_store.hpp"
@@ -26,6 +27,13 @@ std::string chooseReference(const std::vector<RobotMap>& maps, const FusionConfi
 GlobalMapResult buildGlobalMap(const std::vector<RobotMap>& maps, const std::string& reference,
                                const std::vector<Placement>& placements,
                                const ComposerSettings& composer);
+
+/// A distinct colour (blue, green, red) for the robot at `index` of the id-ordered robots.
+Eigen::Vector3i robotColour(std::size_t index);
+
+/// Each placed robot's occupied cells and trajectory in its colour, over `result.map`.
+std::vector<MapOverlay> robotOverlays(const GlobalMapResult& result,
+                                      const std::vector<RobotMap>& maps);
 
 /// Writes global_map.{pgm,yaml,png,bt}, transforms.json, robots.json (what was received from
 /// each robot) and (if asked) robots/<id>.{pgm,yaml}

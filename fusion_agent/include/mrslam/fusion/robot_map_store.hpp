@@ -24,7 +24,8 @@ struct RobotMap {
   bool is_final = false;
   bool stale = false;  ///< its agent fell silent (lease ran out): the last map is kept, flagged
   GridMap map;
-  std::vector<SE2> trajectory;  ///< robot poses in its own map frame
+  std::vector<SE2> trajectory;                       ///< robot poses in its own map frame
+  std::chrono::steady_clock::time_point received{};  ///< when the store took it
 };
 
 class RobotMapStore {
