@@ -29,6 +29,7 @@ void writeTransformsJson(const GlobalMapResult& result, const std::string& path)
     robot["verification"] =
         placement.verification ? nlohmann::json(*placement.verification) : nlohmann::json();
     robot["source"] = placement.source;
+    robot["least_squares"] = placement.least_squares;
     robots.push_back(robot);
   }
   const nlohmann::json document = {{"reference", result.reference_robot}, {"robots", robots}};

@@ -6,6 +6,8 @@
 #include <queue>
 #include <set>
 
+#include "mrslam/fusion/pose_graph.hpp"
+
 namespace mrslam::fusion {
 
 namespace {
@@ -55,7 +57,36 @@ class ConnectedGroups {
   int next_group_ = 0;
 };
 
+PoseGraphEdge poseGraphEdge(const PairwiseEstimate& estimate, const PlacementWeights& weights) {
+  PoseGraphEdge edge{estimate.from, estimate.to, estimate.T_to_from};
+  if (estimate.configured) {
+    edge.sigma_translation_m = weights.sigma_config_translation_m;
+    edge.sigma_rotation_rad = weights.sigma_config_rotation_rad;
+  } else {
+    const double v = std::max(estimate.verification, 1e-3);
+    edge.sigma_translation_m = weights.sigma_translation_m / v;
+    edge.sigma_rotation_rad = weights.sigma_rotation_rad / v;
+  }
+  return edge;
+}
+
 }  // namespace
+
+std::map<std::string, SE2> TeamGraph::leastSquares(
+    const std::string& reference, const std::map<std::string, SE2>& initial,
+    const std::vector<PairwiseEstimate>& kept) const {
+  std::vector<PoseGraphEdge> edges;
+  for (const PairwiseEstimate& estimate : kept) {
+    if (initial.count(estimate.from) && initial.count(estimate.to)) {
+      edges.push_back(poseGraphEdge(estimate, weights_));
+    }
+  }
+  // A spanning tree has one edge fewer than robots: only more than that makes a loop.
+  if (edges.size() + 1 <= initial.size()) {
+    return initial;
+  }
+  return optimisePoseGraph(initial, edges, {reference}).T_reference_robot;
+}
 
 std::vector<PairwiseEstimate> TeamGraph::consistentEdges(std::vector<DroppedEdge>* dropped) const {
   std::vector<PairwiseEstimate> ordered;
@@ -198,6 +229,19 @@ std::vector<Placement> TeamGraph::place(const std::string& reference,
       }
     }
   }
+  std::map<std::string, SE2> initial;
+  for (const auto& entry : reached) {
+    if (std::isfinite(entry.second.cost)) {
+      initial[entry.first] = entry.second.T_reference_robot;
+    }
+  }
+  const std::map<std::string, SE2> adjusted = leastSquares(reference, initial, kept);
+  const bool has_loops = std::count_if(kept.begin(), kept.end(),
+                                       [&](const PairwiseEstimate& e) {
+                                         return initial.count(e.from) && initial.count(e.to);
+                                       }) +
+                             1 >
+                         static_cast<std::ptrdiff_t>(initial.size());
   std::vector<Placement> placements;
   for (const std::string& robot : robots) {
     Placement placement;
@@ -208,7 +252,8 @@ std::vector<Placement> TeamGraph::place(const std::string& reference,
       placement.source = "reference";
     } else if (found != reached.end() && std::isfinite(found->second.cost)) {
       placement.placed = true;
-      placement.T_reference_robot = found->second.T_reference_robot;
+      placement.T_reference_robot = adjusted.at(robot);
+      placement.least_squares = has_loops && found->second.through_estimates;
       if (found->second.through_estimates) {
         placement.verification = found->second.weakest_verification;
         placement.source = "merge";

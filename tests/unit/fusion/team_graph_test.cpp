@@ -123,6 +123,36 @@ TEST(TeamGraphTest, EdgesThatCloseALoopWithinTheToleranceAreAllKept) {
   EXPECT_DOUBLE_EQ(*placements[1].verification, 0.99);
 }
 
+TEST(TeamGraphTest, RedundantPairsPlaceRobotsByLeastSquaresBetweenThePaths) {
+  const SE2 T_a_b(4.0, 1.0, 0.5);
+  const SE2 T_b_c(3.0, -2.0, -1.0);
+  const SE2 T_a_c = T_a_b * T_b_c;
+  TeamGraph graph;
+  graph.addVerified(estimateOf("b", "a", T_a_b, 0.97));
+  graph.addVerified(estimateOf("c", "b", T_b_c, 0.97));
+  // The direct estimate puts c 0.1 m off (along a's x): within the loop tolerance.
+  graph.addVerified(estimateOf("c", "a", SE2(0.1, 0.0, 0.0) * T_a_c, 0.97));
+  ASSERT_TRUE(graph.dropped().empty());
+  const auto placements = graph.place("a", {"a", "b", "c"});
+  EXPECT_FALSE(placements[0].least_squares) << "the reference stays where it is";
+  EXPECT_TRUE(placements[1].least_squares);
+  EXPECT_TRUE(placements[2].least_squares);
+  // Equal weights: c lands between its two paths, not on either.
+  const double c_x = placements[2].T_reference_robot.x();
+  EXPECT_GT(c_x, T_a_c.x() + 0.02);
+  EXPECT_LT(c_x, T_a_c.x() + 0.08);
+  EXPECT_NEAR(placements[2].T_reference_robot.y(), T_a_c.y(), 0.02);
+}
+
+TEST(TeamGraphTest, WithoutALoopPlacementsAreThePathsExactly) {
+  const SE2 T_a_b(4.0, 1.0, 0.5);
+  TeamGraph graph;
+  graph.addVerified(estimateOf("b", "a", T_a_b, 0.97));
+  const auto placements = graph.place("a", {"b"});
+  EXPECT_FALSE(placements[0].least_squares);
+  expectPose(placements[0].T_reference_robot, T_a_b);
+}
+
 TEST(TeamGraphTest, AConfiguredTransformIsNeverDroppedByALoop) {
   TeamGraph graph;
   graph.addConfigured("b", "a", SE2(4.0, 0.0, 0.0));

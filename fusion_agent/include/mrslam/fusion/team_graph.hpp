@@ -11,7 +11,10 @@
 // Loops (three or more robots): edges are taken in order of confidence (configured first, then
 // by V); an edge that joins two robots already connected by the edges taken must agree with the
 // transform along them within the loop tolerance, or it is dropped and reported — one wrong
-// merge in a loop of right ones cannot move a robot.
+// merge in a loop of right ones cannot move a robot. With redundant edges left (loops), the
+// placement is the least-squares one over all of them (pose_graph.hpp), each edge weighted by
+// its V: the errors of the pairwise estimates are spread over the loop instead of being piled
+// on the robots at its far end.
 
 #include <cmath>
 #include <map>
@@ -52,9 +55,19 @@ struct LoopTolerance {
   double rotation_rad = 2.0 * M_PI / 180.0;  ///< ... and in rotation
 };
 
+/// Weights of the least-squares placement: an estimate with verification V counts with standard
+/// deviations σ / V; a configured transform with σ_config (it does not move).
+struct PlacementWeights {
+  double sigma_translation_m = 0.05;         ///< an estimate's translation σ at V = 1
+  double sigma_rotation_rad = M_PI / 360.0;  ///< an estimate's rotation σ at V = 1 (0.5°)
+  double sigma_config_translation_m = 1e-4;  ///< a configured transform's translation σ
+  double sigma_config_rotation_rad = 1e-5;   ///< a configured transform's rotation σ
+};
+
 class TeamGraph {
  public:
-  explicit TeamGraph(LoopTolerance tolerance = {}) : tolerance_(tolerance) {}
+  explicit TeamGraph(LoopTolerance tolerance = {}, PlacementWeights weights = {})
+      : tolerance_(tolerance), weights_(weights) {}
   /// A transform fixed by configuration (never replaced by estimates).
   void addConfigured(const std::string& from, const std::string& to, const SE2& T_to_from);
   /// Stores a verified estimate unless the pair already holds a better one: a configured one,
@@ -78,7 +91,13 @@ class TeamGraph {
  private:
   /// Splits the edges into those that agree with the loops they close and those that do not.
   std::vector<PairwiseEstimate> consistentEdges(std::vector<DroppedEdge>* dropped) const;
+  /// The least-squares poses of the robots in `initial` over the kept edges between them (the
+  /// reference held fixed); `initial` itself when the edges form no loop.
+  std::map<std::string, SE2> leastSquares(const std::string& reference,
+                                          const std::map<std::string, SE2>& initial,
+                                          const std::vector<PairwiseEstimate>& kept) const;
   LoopTolerance tolerance_;
+  PlacementWeights weights_;
   using PairKey = std::pair<std::string, std::string>;  // ordered (smaller id first)
   static PairKey keyOf(const std::string& a, const std::string& b);
 
