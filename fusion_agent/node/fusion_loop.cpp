@@ -111,6 +111,87 @@ void FusionLoop::finalMerges() {
   publishAttempts();
 }
 
+namespace {
+
+constexpr std::size_t kMaxPendingRendezvous = 64;
+
+const RobotMap* mapOf(const std::vector<RobotMap>& maps, const std::string& robot_id) {
+  for (const RobotMap& map : maps) {
+    if (map.robot_id == robot_id) {
+      return &map;
+    }
+  }
+  return nullptr;
+}
+
+MergeAttempt rendezvousAttempt(const RendezvousHypothesis& hypothesis, const RendezvousCheck& check,
+                               double time_ms) {
+  MergeAttempt attempt;
+  attempt.from = hypothesis.from;
+  attempt.to = hypothesis.to;
+  attempt.result.accepted = check.accepted;
+  attempt.result.verification = check.verification;
+  attempt.result.method = "rendezvous";
+  attempt.result.reason = check.reason;
+  attempt.result.trials = 1;
+  attempt.T_to_from = check.T_to_from;
+  attempt.time_ms = time_ms;
+  return attempt;
+}
+
+}  // namespace
+
+void FusionLoop::checkRendezvous() {
+  for (const RendezvousHypothesis& hypothesis : node_.rendezvous().takeHypotheses()) {
+    spdlog::info("fusion: rendezvous of {} and {}: a hypothesis to check against the maps",
+                 hypothesis.from, hypothesis.to);
+    pending_rendezvous_.push_back({hypothesis, 0});
+  }
+  if (pending_rendezvous_.size() > kMaxPendingRendezvous) {
+    pending_rendezvous_.erase(pending_rendezvous_.begin(),
+                              pending_rendezvous_.end() - kMaxPendingRendezvous);
+  }
+  if (pending_rendezvous_.empty()) {
+    return;
+  }
+  const std::vector<RobotMap> maps = store_.snapshot();
+  std::vector<PendingRendezvous> still_pending;
+  for (PendingRendezvous& pending : pending_rendezvous_) {
+    const RobotMap* from = mapOf(maps, pending.hypothesis.from);
+    const RobotMap* to = mapOf(maps, pending.hypothesis.to);
+    if (from == nullptr || to == nullptr || pending.checked_at_version == store_.version()) {
+      still_pending.push_back(pending);  // wait for both maps, or for either to change
+      continue;
+    }
+    pending.checked_at_version = store_.version();
+    const auto started = Clock::now();
+    const RendezvousCheck check =
+        fusion::checkRendezvous(pending.hypothesis, from->map, to->map, config_.rendezvous);
+    const MergeAttempt attempt =
+        rendezvousAttempt(pending.hypothesis, check, 1e3 * secondsSince(started));
+    node_.publishAttempt(attempt);
+    if (viewer_model_) {
+      viewer_model_->addAttempt(attempt);
+    }
+    if (check.accepted) {
+      PairwiseEstimate estimate;
+      estimate.from = attempt.from;
+      estimate.to = attempt.to;
+      estimate.T_to_from = check.T_to_from;
+      estimate.verification = check.verification;
+      estimate.method = "rendezvous";
+      changed_ = graph_.addVerified(estimate) || changed_;
+      spdlog::info("fusion: rendezvous {} -> {} verified by the maps (V {:.3f})", attempt.from,
+                   attempt.to, check.verification);
+    } else if (check.overlap_cells < config_.rendezvous.min_overlap_cells) {
+      still_pending.push_back(pending);  // the maps may grow into each other
+    } else {
+      spdlog::warn("fusion: {} -> {}: {}", attempt.from, attempt.to, check.reason);
+    }
+  }
+  pending_rendezvous_ = std::move(still_pending);
+}
+
 constexpr std::chrono::milliseconds kLoopPeriod{50};
 
 int FusionLoop::run(const std::atomic<bool>& shutdown) {
@@ -139,6 +220,7 @@ int FusionLoop::run(const std::atomic<bool>& shutdown) {
       }
     }
     publishAttempts();
+    checkRendezvous();
     if (stopping) {
       finalMerges();
       publish();

@@ -33,6 +33,9 @@ class FusionLoop {
   void writeFiles();
   void publishAttempts();
   void finalMerges();
+  /// Checks the rendezvous received (and those waiting for maps) against the maps; a verified
+  /// one becomes a pairwise estimate of the team graph.
+  void checkRendezvous();
 
   const FusionConfig& config_;
   RobotMapStore store_;
@@ -48,6 +51,13 @@ class FusionLoop {
   std::uint64_t offered_version_ = 0;
   bool changed_ = false;
   bool written_ = false;
+  /// Rendezvous waiting for both maps, or for maps that overlap enough, with the map versions
+  /// they were last checked against.
+  struct PendingRendezvous {
+    RendezvousHypothesis hypothesis;
+    std::uint64_t checked_at_version = 0;
+  };
+  std::vector<PendingRendezvous> pending_rendezvous_;
 };
 
 }  // namespace mrslam::fusion

@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
+
 #include <algorithm>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
@@ -55,12 +57,15 @@ FusionNode::FusionNode(const FusionConfig& config, RobotMapStore& store, ViewerM
       dds::kRobotStatusTopic, dds::kStateReaderProfile, this);
   map_reader_ = participant_.createReader<msg::LocalMapPubSubType>(dds::kLocalMapTopic,
                                                                    dds::kMapReaderProfile, this);
+  sighting_reader_ = participant_.createReader<msg::RobotSightingMsgPubSubType>(
+      dds::kRendezvousTopic, dds::kSightingReaderProfile, this);
 }
 
 FusionNode::~FusionNode() {
   // Stop callbacks before the members they use go away.
   map_reader_->set_listener(nullptr);
   status_reader_->set_listener(nullptr);
+  sighting_reader_->set_listener(nullptr);
 }
 
 void FusionNode::on_subscription_matched(
@@ -116,6 +121,40 @@ void FusionNode::on_data_available(DataReader* reader) {
     receiveMaps(reader);
   } else if (reader == status_reader_) {
     receiveStatus(reader);
+  } else if (reader == sighting_reader_) {
+    receiveSightings(reader);
+  }
+}
+
+void FusionNode::receiveSightings(DataReader* reader) {
+  msg::RobotSightingMsg message;
+  SampleInfo info;
+  while (reader->take_next_sample(&message, &info) == ReturnCode_t::RETCODE_OK) {
+    if (!info.valid_data) {
+      continue;
+    }
+    Sighting sighting;
+    sighting.observer = message.observer_id();
+    sighting.observed = message.observed_id();
+    sighting.stamp = dds::fromMsg(message.stamp());
+    sighting.range_m = message.range_m();
+    sighting.bearing_rad = message.bearing_rad();
+    sighting.T_map_observer = dds::fromMsg(message.T_map_observer());
+    const auto& pose = message.T_map_observer();
+    if (!isValidRobotId(sighting.observer) || !isValidRobotId(sighting.observed)) {
+      rejected_sightings_.report("robot id", "a sighting names no valid robot id");
+    } else if (!std::isfinite(sighting.range_m) || sighting.range_m <= 0.0 ||
+               !std::isfinite(sighting.bearing_rad) || !std::isfinite(pose.x()) ||
+               !std::isfinite(pose.y()) || !std::isfinite(pose.theta())) {
+      rejected_sightings_.report("values",
+                                 "a sighting from " + sighting.observer +
+                                     " has a range, bearing or pose that is not a number");
+    } else if (!rendezvous_.add(sighting)) {
+      rejected_sightings_.report("self", sighting.observer + " saw itself");
+    } else {
+      spdlog::info("fusion: {} saw {} at {:.2f} m, bearing {:.1f} deg", sighting.observer,
+                   sighting.observed, sighting.range_m, sighting.bearing_rad * 180.0 / M_PI);
+    }
   }
 }
 

@@ -12,6 +12,7 @@
 #include "mrslam/fusion/fusion_config.hpp"
 #include "mrslam/fusion/global_map_builder.hpp"
 #include "mrslam/fusion/merge_scheduler.hpp"
+#include "mrslam/fusion/rendezvous.hpp"
 #include "mrslam/fusion/robot_map_store.hpp"
 #include "mrslam/fusion/viewer_model.hpp"
 
@@ -34,6 +35,8 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
 
   /// Maps refused, by reason.
   const ErrorCounter& rejected() const { return rejected_; }
+  /// The robots' sightings of each other received so far, paired into rendezvous.
+  RendezvousBook& rendezvous() { return rendezvous_; }
 
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override;
   void on_liveliness_changed(
@@ -46,6 +49,7 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
  private:
   void receiveMaps(eprosima::fastdds::dds::DataReader* reader);
   void receiveStatus(eprosima::fastdds::dds::DataReader* reader);
+  void receiveSightings(eprosima::fastdds::dds::DataReader* reader);
   void publishStatus(const GlobalMapResult& result, std::uint64_t sequence);
   /// Remembers which writer sends a robot's maps; true when it is a new one (a restart).
   bool noteWriter(const std::string& robot_id,
@@ -58,6 +62,9 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   dds::Participant participant_;
   eprosima::fastdds::dds::DataReader* map_reader_ = nullptr;
   eprosima::fastdds::dds::DataReader* status_reader_ = nullptr;
+  eprosima::fastdds::dds::DataReader* sighting_reader_ = nullptr;
+  RendezvousBook rendezvous_;
+  ErrorCounter rejected_sightings_{"fusion: sighting refused"};
   eprosima::fastdds::dds::DataWriter* global_map_writer_ = nullptr;
   eprosima::fastdds::dds::DataWriter* transforms_writer_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;

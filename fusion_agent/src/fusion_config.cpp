@@ -108,6 +108,21 @@ FusionConfig loadFusionConfig(const std::string& path) {
     viewer.fail("host", "must not be empty");
   }
   fusion.viewer.port = static_cast<int>(viewer.getInt("port", fusion.viewer.port, {0.0, 65535.0}));
+  const Config rendezvous = config.section("rendezvous");
+  RendezvousSettings& meet = fusion.rendezvous;
+  meet.max_time_gap_s = rendezvous.getDouble("max_time_gap_s", meet.max_time_gap_s, {0.0, 60.0});
+  meet.min_verification_v =
+      rendezvous.getDouble("min_verification_v", meet.min_verification_v, {0.0, 1.0});
+  meet.min_overlap_cells = static_cast<std::size_t>(rendezvous.getInt(
+      "min_overlap_cells", static_cast<long long>(meet.min_overlap_cells), {0.0, 1e9}));
+  meet.min_structure_agreement =
+      rendezvous.getDouble("min_structure_agreement", meet.min_structure_agreement, {0.0, 1.0});
+  meet.rotation_step_rad =
+      rendezvous.getDouble("rotation_step_rad", meet.rotation_step_rad, {1e-4, 0.1});
+  meet.max_refinement_m =
+      rendezvous.getDouble("max_refinement_m", meet.max_refinement_m, {0.0, 100.0});
+  meet.max_refinement_rad =
+      rendezvous.getDouble("max_refinement_rad", meet.max_refinement_rad, {0.0, M_PI});
   config.checkNoUnknownKeys();
   return fusion;
 }

@@ -43,7 +43,9 @@ RobotNode::RobotNode(const DdsSettings& settings, const std::string& robot_id)
           dds::kRobotStatusTopic, dds::kStateWriterProfile)),
       ros_pose_writer_(
           participant_.createWriter<geometry_msgs::msg::dds_::PoseWithCovarianceStamped_PubSubType>(
-              dds::rosPoseTopic(robot_id), dds::kRosPoseWriterProfile)) {
+              dds::rosPoseTopic(robot_id), dds::kRosPoseWriterProfile)),
+      sighting_writer_(participant_.createWriter<msg::RobotSightingMsgPubSubType>(
+          dds::kRendezvousTopic, dds::kSightingWriterProfile)) {
   map_message_.robot_id(robot_id_);
 }
 
@@ -64,6 +66,22 @@ void RobotNode::publishPose(Stamp stamp, const SE2& T_map_robot,
   geometry_msgs::msg::dds_::PoseWithCovarianceStamped_ ros_pose;
   dds::toRosPose(T_map_robot, covariance, stamp, robot_id_ + "/map", ros_pose);
   ros_pose_writer_->write(&ros_pose);
+}
+
+void RobotNode::publishSighting(const SightingReport& report) {
+  msg::RobotSightingMsg message;
+  message.observer_id(robot_id_);
+  message.observed_id(report.observed_id);
+  message.stamp(dds::toMsg(report.stamp));
+  message.range_m(report.range_m);
+  message.bearing_rad(report.bearing_rad);
+  message.T_map_observer(dds::toMsg(report.T_map_robot));
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      message.covariance()[static_cast<std::size_t>(row * 3 + col)] = report.covariance(row, col);
+    }
+  }
+  sighting_writer_->write(&message);
 }
 
 void RobotNode::publishMap(const MapSnapshot& snapshot) {

@@ -17,6 +17,7 @@ class RobotNode : public RobotOutput {
   void publishPose(Stamp stamp, const SE2& T_map_robot, const Eigen::Matrix3d& covariance) override;
   void publishMap(const MapSnapshot& snapshot) override;
   void publishStatus(const StatusReport& report) override;
+  void publishSighting(const SightingReport& report) override;
 
   /// Waits (up to timeout_s) for `readers` map readers to match and then for all matched readers
   /// to acknowledge every map sent. False when that did not happen in time.
@@ -28,7 +29,8 @@ class RobotNode : public RobotOutput {
   eprosima::fastdds::dds::DataWriter* pose_writer_;
   eprosima::fastdds::dds::DataWriter* map_writer_;
   eprosima::fastdds::dds::DataWriter* status_writer_;
-  eprosima::fastdds::dds::DataWriter* ros_pose_writer_;  ///< rt/<robot>/pose for ROS 2 tools
+  eprosima::fastdds::dds::DataWriter* ros_pose_writer_;
+  eprosima::fastdds::dds::DataWriter* sighting_writer_;  ///< rt/<robot>/pose for ROS 2 tools
   std::uint64_t pose_sequence_ = 0;
   msg::LocalMap map_message_;  ///< reused: maps are large
 };

@@ -74,6 +74,8 @@ ScanMatcherSettings loadScanMatching(const Config& section) {
   matching.icp = loadIcp(section, matching.icp);
   matching.covariance_scale =
       section.getDouble("covariance_scale", matching.covariance_scale, {1e-3, 1e6});
+  matching.covariance_shape_scale =
+      section.getDouble("covariance_shape_scale", matching.covariance_shape_scale, {0, 1e6});
   matching.min_sigma_xy_m = section.getDouble("min_sigma_xy_m", matching.min_sigma_xy_m, {0, 10});
   matching.min_sigma_theta_rad =
       section.getDouble("min_sigma_theta_rad", matching.min_sigma_theta_rad, {0, 10});

@@ -137,6 +137,7 @@ RobotConfig loadRobotConfig(const std::string& path) {
   }
   robot.source = loadSource(config.section("source"));
   robot.simulator = drivers::loadSimulatorSettings(config.section("simulator"));
+  robot.sightings = drivers::loadSightingSettings(config.section("simulator").section("sightings"));
   robot.platform = loadPlatform(config.section("platform"));
   robot.mounting = loadMounting(config.section("laser"), config.section("imu"));
   robot.odometry_noise = loadOdometryNoise(config.section("odometry_noise"));
@@ -160,6 +161,10 @@ std::unique_ptr<drivers::SampleSource> openUnwrappedSource(const RobotConfig& co
   }
   switch (source.type) {
     case SourceType::kSimulator:
+      if (!config.sightings.robots.empty()) {
+        return std::make_unique<drivers::SightingSimulator>(config.simulator, config.sightings,
+                                                            config.platform, config.mounting);
+      }
       return std::make_unique<drivers::Simulator>(config.simulator, config.platform,
                                                   config.mounting);
     case SourceType::kDevices:

@@ -26,6 +26,11 @@ RobotPipeline::Update RobotPipeline::process(const Sample& sample) {
   } else if (const auto* imu = std::get_if<ImuSample>(&sample)) {
     ++counters_.imu;
     estimator_->addImu(*imu);
+  } else if (const auto* sighting = std::get_if<RobotSighting>(&sample)) {
+    ++counters_.sightings;
+    last_sighting_ = {sighting->stamp,       sighting->observed_id, sighting->range_m,
+                      sighting->bearing_rad, estimator_->pose(),    estimator_->covariance()};
+    return Update::kSighting;
   }
   return Update::kPose;
 }

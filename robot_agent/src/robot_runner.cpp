@@ -38,6 +38,9 @@ RunSummary RobotRunner::run(const std::atomic<bool>& stop) {
     pace(stamp);
     const RobotPipeline::Update update = pipeline_.process(*sample);
     output_.publishPose(stamp, pipeline_.pose(), pipeline_.covariance());
+    if (update == RobotPipeline::Update::kSighting) {
+      output_.publishSighting(pipeline_.lastSighting());
+    }
     const Stamp now = pipeline_.latestStamp();
     if (update == RobotPipeline::Update::kScan &&
         secondsBetween(last_map_stamp_, now) >= settings_.map_period_s) {

@@ -4,6 +4,31 @@
 
 namespace mrslam::robot {
 
+namespace {
+
+// The smallest eigenvalue of a symmetric 2 × 2 matrix: (a + c)/2 − √(((a − c)/2)² + b²).
+double smallestEigenvalue(const Eigen::Matrix2d& m) {
+  return 0.5 * (m(0, 0) + m(1, 1)) - std::hypot(0.5 * (m(0, 0) - m(1, 1)), m(0, 1));
+}
+
+// The fit covariance (icp.hpp eq. 4) turned into the measurement's, before the floor is added.
+// Its scale (σ̂² / n) ignores correlated errors and is far too small; its shape, the inverse of the
+// pairs' information, tells which directions the scan constrains.
+Eigen::Matrix3d scaledFitCovariance(const Eigen::Matrix3d& fit,
+                                    const ScanMatcherSettings& settings) {
+  if (settings.covariance_shape_scale <= 0.0) {
+    return settings.covariance_scale * fit;
+  }
+  const double best_variance = smallestEigenvalue(fit.topLeftCorner<2, 2>());
+  if (!(best_variance > 0.0)) {
+    return settings.covariance_scale * fit;
+  }
+  const double floor_variance = settings.min_sigma_xy_m * settings.min_sigma_xy_m;
+  return (settings.covariance_shape_scale * floor_variance / best_variance) * fit;
+}
+
+}  // namespace
+
 ScanMatcher::ScanMatcher(const ScanMatcherSettings& settings, const SensorMounting& mounting)
     : settings_(settings), mounting_(mounting) {}
 
@@ -28,7 +53,7 @@ std::optional<ScanMatch> ScanMatcher::match(const PreparedScan& scan,
   // (x, y) of T_anchor_robot = R_aᵀ (t − t_a), θ − θ_a: the covariance turns with R_aᵀ.
   Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
   A.topLeftCorner<2, 2>() = T_map_anchor_.rotation().transpose();
-  match.covariance = settings_.covariance_scale * A * match.icp.covariance * A.transpose();
+  match.covariance = A * scaledFitCovariance(match.icp.covariance, settings_) * A.transpose();
   match.covariance(0, 0) += settings_.min_sigma_xy_m * settings_.min_sigma_xy_m;
   match.covariance(1, 1) += settings_.min_sigma_xy_m * settings_.min_sigma_xy_m;
   match.covariance(2, 2) += settings_.min_sigma_theta_rad * settings_.min_sigma_theta_rad;

@@ -245,13 +245,14 @@ TEST_F(EmulatedRobotTest, OdometryPosesBecomeTheWheelTravelAndNoImuAppears) {
   for (int k = 0; k <= 5; ++k) {
     LaserScan scan = scanOf(180, -M_PI / 2.0, M_PI / 180.0, 2.0f);
     scan.stamp = Stamp::fromSeconds(100.0 + 0.1 * k);
-    samples.push_back(scan);
+    samples.emplace_back(std::in_place_type<LaserScan>, std::move(scan));
     if (k == 5) {
       break;
     }
     // 0.25 m forward per step, then a quarter turn on the spot in the last step.
     const SE2 pose = k < 4 ? SE2(0.25 * k, 0.0, 0.0) : SE2(0.75, 0.0, M_PI / 2.0);
-    samples.push_back(OdometryPose{Stamp::fromSeconds(100.0 + 0.1 * k + 0.05), pose});
+    samples.emplace_back(std::in_place_type<OdometryPose>,
+                         OdometryPose{Stamp::fromSeconds(100.0 + 0.1 * k + 0.05), pose});
   }
   EmulatedRobotSettings settings;
   settings.drive.wheel_radius_m = 0.1;

@@ -18,6 +18,7 @@ constexpr double kDeg = M_PI / 180.0;
 RobotConfig simulatorConfig(int route, std::uint64_t seed, double duration_s = 60.0) {
   RobotConfig config = loadRobotConfig(test::sourcePath("config/sim_robot1.yaml"));
   config.simulator.robot_index = route;
+  config.sightings.robots.clear();  // robot1's teammates drive the other routes
   config.simulator.seed = seed;
   config.simulator.duration_s = duration_s;
   return config;

@@ -29,7 +29,7 @@ estimator:
   scan_delay_s: 0.05
   imu: {use_heading: false, heading_sigma_rad: 0.03, max_gap_s: 1.0}
   scan_matching: {mode: scan_to_scan, local_map_keyframes: 3, max_range_m: 8.0,
-                  min_correspondence_m: 0.2, min_sigma_xy_m: 0.02}
+                  min_correspondence_m: 0.2, min_sigma_xy_m: 0.02, covariance_shape_scale: 0.3}
 )");
   EXPECT_EQ(settings.type, EstimatorType::kOdometry);
   EXPECT_DOUBLE_EQ(settings.ekf.gate_probability, 0.99);
@@ -42,6 +42,7 @@ estimator:
   EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.points.max_range_m, 8.0);
   EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.icp.min_correspondence_m, 0.2);
   EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.min_sigma_xy_m, 0.02);
+  EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.covariance_shape_scale, 0.3);
 }
 
 TEST(EstimatorConfigTest, BadValuesStopWithTheirPlace) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <string>
 #include <variant>
 #include <vector>
 
@@ -61,7 +62,16 @@ struct ImuSample {
   Eigen::Vector3d acceleration_g = Eigen::Vector3d::Zero();
 };
 
-using Sample = std::variant<LaserScan, WheelTicks, OdometryPose, ImuSample>;
+/// This robot saw another one (a rendezvous, seed 003 §3.2): its range and its bearing in this
+/// robot's frame (x forward, counter-clockwise), as a camera or a fiducial detector gives them.
+struct RobotSighting {
+  Stamp stamp;
+  std::string observed_id;  ///< the robot seen
+  double range_m = 0.0;
+  double bearing_rad = 0.0;
+};
+
+using Sample = std::variant<LaserScan, WheelTicks, OdometryPose, ImuSample, RobotSighting>;
 
 /// The time stamp of any sample.
 inline Stamp stampOf(const Sample& sample) {

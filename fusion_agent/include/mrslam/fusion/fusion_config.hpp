@@ -9,6 +9,7 @@
 #include "mrslam/common/se2.hpp"
 #include "mrslam/fusion/map_composer.hpp"
 #include "mrslam/fusion/merge_scheduler.hpp"
+#include "mrslam/fusion/rendezvous.hpp"
 
 namespace mrslam::fusion {
 
@@ -42,6 +43,7 @@ struct FusionConfig {
   bool ros2_map = true;               ///< also publish the global map on ROS 2's rt/map
   std::string ros2_frame_id = "map";  ///< its frame (the reference robot's map frame)
   ViewerSettings viewer;
+  RendezvousSettings rendezvous;  ///< checking the robots' rendezvous against the maps
 };
 
 /// Loads and validates a fusion config; throws ConfigError (`file:line: key: what is wrong`).

@@ -9,6 +9,7 @@
 #include "mrslam/common/platform.hpp"
 #include "mrslam/drivers/odometry_noise.hpp"
 #include "mrslam/drivers/sample_source.hpp"
+#include "mrslam/drivers/sighting_simulator.hpp"
 #include "mrslam/drivers/simulator.hpp"
 #include "mrslam/robot/device_source.hpp"
 #include "mrslam/robot/estimator_config.hpp"
@@ -35,6 +36,7 @@ struct RobotConfig {
   std::string robot_id;  ///< the robot's name on DDS and in files
   SourceSettings source;
   drivers::SimulatorSettings simulator;
+  drivers::SightingSettings sightings;  ///< simulator.sightings: teammates it can see
   DiffDriveParams platform;
   SensorMounting mounting;
   OdometryNoise odometry_noise;  ///< odometry increments' noise (both estimators use it)

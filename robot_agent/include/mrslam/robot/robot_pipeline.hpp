@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mrslam/robot/grid_mapper.hpp"
@@ -17,18 +18,29 @@ struct TrajectoryPoint {
   SE2 T_map_robot;
 };
 
+/// Another robot seen (a rendezvous), with this robot's pose estimate at that moment.
+struct SightingReport {
+  Stamp stamp;
+  std::string observed_id;
+  double range_m = 0.0;
+  double bearing_rad = 0.0;  ///< in this robot's frame
+  SE2 T_map_robot;           ///< this robot's estimated pose when it saw the other
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+};
+
 struct PipelineCounters {
   std::uint64_t scans = 0;
   std::uint64_t wheel_ticks = 0;
   std::uint64_t odometry = 0;
   std::uint64_t imu = 0;
+  std::uint64_t sightings = 0;
   std::uint64_t late_samples = 0;  ///< samples older than one already processed
 };
 
 class RobotPipeline {
  public:
   /// What a sample changed.
-  enum class Update { kPose, kScan };
+  enum class Update { kPose, kScan, kSighting };
 
   RobotPipeline(const MappingSettings& mapping, const SensorMounting& mounting,
                 std::unique_ptr<PoseEstimator> estimator);
@@ -40,6 +52,8 @@ class RobotPipeline {
   const OccupancyGrid& grid() const { return mapper_.grid(); }
   const std::vector<TrajectoryPoint>& trajectory() const { return trajectory_; }
   const PipelineCounters& counters() const { return counters_; }
+  /// The newest sighting (valid after process() returned kSighting).
+  const SightingReport& lastSighting() const { return last_sighting_; }
   /// Stamp of the newest sample processed (zero before the first).
   Stamp latestStamp() const { return latest_stamp_; }
 
@@ -50,6 +64,7 @@ class RobotPipeline {
   GridMapper mapper_;
   std::vector<TrajectoryPoint> trajectory_;
   PipelineCounters counters_;
+  SightingReport last_sighting_;
   Stamp latest_stamp_;
   bool has_stamp_ = false;
 };

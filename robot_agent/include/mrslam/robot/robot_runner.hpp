@@ -45,6 +45,8 @@ class RobotOutput {
                            const Eigen::Matrix3d& covariance) = 0;
   virtual void publishMap(const MapSnapshot& snapshot) = 0;
   virtual void publishStatus(const StatusReport& report) = 0;
+  /// A rendezvous: another robot seen (outputs without a rendezvous topic ignore it).
+  virtual void publishSighting(const SightingReport& /*report*/) {}
 };
 
 struct RunnerSettings {

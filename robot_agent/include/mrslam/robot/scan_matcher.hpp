@@ -29,8 +29,12 @@ struct ScanMatcherSettings {
   ScanPointSettings points;                ///< which hits are used, thinning, normals
   IcpSettings icp;                         ///< the registration
   double covariance_scale = 1.0;           ///< the fit covariance (icp.hpp eq. 4) times this
-  double min_sigma_xy_m = 0.01;            ///< floor of the measurement's σ in x and y
-  double min_sigma_theta_rad = 0.005;      ///< floor of the measurement's σ in θ
+  /// > 0: the fit covariance is instead scaled so that its best-constrained translation direction
+  /// has variance covariance_shape_scale · min_sigma_xy_m², its shape kept: a direction the scan
+  /// hardly constrains (along a corridor) stays as many times less certain. 0: covariance_scale.
+  double covariance_shape_scale = 0.0;
+  double min_sigma_xy_m = 0.01;        ///< floor of the measurement's σ in x and y
+  double min_sigma_theta_rad = 0.005;  ///< floor of the measurement's σ in θ
 };
 
 /// A scan turned into the point sets matching needs (robot frame).
