@@ -42,16 +42,15 @@ void loadMergerChoice(const Config& section, FusionConfig& fusion) {
   fusion.merge_method = section.getChoice("method", fusion.merge_method, choices);
   for (const std::string& name : mergerNames()) {
     if (section.has(name)) {
-      makeMerger(name, section.section(name));
+      makeMergerFrom(name, section);
     }
   }
   if (fusion.merge_method == "none") {
     fusion.make_merger = nullptr;
     return;
   }
-  const Config settings = section.section(fusion.merge_method);
   const std::string method = fusion.merge_method;
-  fusion.make_merger = [method, settings]() { return makeMerger(method, settings); };
+  fusion.make_merger = [method, section]() { return makeMergerFrom(method, section); };
 }
 
 void loadMerge(const Config& section, FusionConfig& fusion) {

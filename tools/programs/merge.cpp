@@ -244,7 +244,7 @@ int run(const MergeOptions& options) {
                                       ? mrslam::Config::loadString("", "<defaults>")
                                       : mrslam::Config::loadFile(options.config);
     mrslam::fusion::checkMergerConfig(config);
-    merger = mrslam::fusion::makeMerger(options.method, config.section(options.method));
+    merger = mrslam::fusion::makeMergerFrom(options.method, config);
   } catch (const std::exception& error) {  // MapIoError, ConfigError, unknown method
     std::cerr << "mrslam_merge: " << error.what() << '\n';
     return 1;

@@ -217,7 +217,7 @@ int run(const CasesOptions& options) {
                                       : mrslam::Config::loadFile(options.config);
     mrslam::fusion::checkMergerConfig(config);
     for (const std::string& name : splitList(options.methods)) {
-      mergers.push_back(mrslam::fusion::makeMerger(name, config.section(name)));
+      mergers.push_back(mrslam::fusion::makeMergerFrom(name, config));
       tallies.push_back({});
       tallies.back().name = name;
     }

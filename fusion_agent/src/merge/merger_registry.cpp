@@ -2,17 +2,44 @@
 
 #include <stdexcept>
 
+#include "mrslam/fusion/merge/chain_merger.hpp"
 #include "mrslam/fusion/merge/feature_merger.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
+#include "mrslam/fusion/merge/virtual_robot.hpp"
 
 namespace mrslam::fusion {
 
 std::vector<std::string> mergerNames() {
-  return {"seed", "feature"};
+  return {"seed", "feature", "virtual", "chain"};
 }
 
 std::string defaultMergerName() {
   return mergerNames().front();
+}
+
+namespace {
+
+/// A chain whose `steps` come from `chain`; each step's settings from its section of `methods`,
+/// or its defaults when there is none.
+std::unique_ptr<MapMerger> makeChain(const Config& chain, const Config* methods) {
+  std::vector<std::unique_ptr<MapMerger>> steps;
+  try {
+    for (const std::string& step : parseChainSteps(chain.getString("steps", kDefaultChainSteps))) {
+      steps.push_back(methods != nullptr ? makeMergerFrom(step, *methods) : makeMerger(step));
+    }
+  } catch (const std::invalid_argument& error) {
+    chain.fail("steps", error.what());
+  }
+  return std::make_unique<ChainMerger>(std::move(steps));
+}
+
+}  // namespace
+
+std::unique_ptr<MapMerger> makeMergerFrom(const std::string& name, const Config& methods) {
+  if (name == "chain") {
+    return makeChain(methods.section("chain"), &methods);
+  }
+  return makeMerger(name, methods.section(name));
 }
 
 std::unique_ptr<MapMerger> makeMerger(const std::string& name, const Config& settings) {
@@ -21,6 +48,12 @@ std::unique_ptr<MapMerger> makeMerger(const std::string& name, const Config& set
   }
   if (name == "feature") {
     return std::make_unique<FeatureMerger>(loadFeatureMergerSettings(settings));
+  }
+  if (name == "virtual") {
+    return std::make_unique<VirtualRobotMerger>(loadVirtualRobotSettings(settings));
+  }
+  if (name == "chain") {
+    return makeChain(settings, nullptr);
   }
   std::string known;
   for (const std::string& candidate : mergerNames()) {
@@ -32,7 +65,7 @@ std::unique_ptr<MapMerger> makeMerger(const std::string& name, const Config& set
 void checkMergerConfig(const Config& config) {
   for (const std::string& name : mergerNames()) {
     if (config.has(name)) {
-      makeMerger(name, config.section(name));
+      makeMergerFrom(name, config);
     }
   }
   config.checkNoUnknownKeys();

@@ -213,7 +213,9 @@ const std::map<FileKind, std::map<std::string, std::string>> kExtraFiles = {
           "merge:\n"
           "  method: seed\n"
           "  seed: {}\n"
-          "  feature: {}\n"},
+          "  feature: {}\n"
+          "  virtual: {}\n"
+          "  chain: {}\n"},
      }},
     {FileKind::kTeam,
      {

@@ -15,11 +15,16 @@ std::vector<std::string> mergerNames();
 /// The best merger there is (the first of mergerNames()).
 std::string defaultMergerName();
 
-/// A merger by name ("seed": the seed paper's pipeline, the default; "feature": the baseline), its
+/// A merger by name ("seed": the seed paper's pipeline, the default; "feature": the baseline;
+/// "virtual": the virtual robot; "chain": steps tried in turn), its
 /// settings read from `settings`: that merger's own config section (an empty Config gives the
 /// defaults). Throws std::invalid_argument for an unknown name (the message lists the known ones)
 /// and ConfigError for bad settings.
 std::unique_ptr<MapMerger> makeMerger(const std::string& name, const Config& settings);
+/// A merger by name from a document (or section) of merger settings holding one section per
+/// method (`seed:`, `virtual:`, `chain:` ...): a chain's steps take the settings of their own
+/// sections there. makeMerger(name, settings) gives a chain's steps their defaults.
+std::unique_ptr<MapMerger> makeMergerFrom(const std::string& name, const Config& methods);
 /// Checks a document of merger settings with one section per method name (`feature:`, `seed:`):
 /// builds each method whose section is present, then rejects every key nobody read, so a bad value,
 /// an unknown key or an unknown method stops here with ConfigError.

@@ -1,0 +1,33 @@
+#pragma once
+// A configured chain of mergers (issue: "seed pipeline; virtual robot when it refuses"): each
+// step is tried in turn until one accepts. The result is that step's, its `method` naming the
+// step ("virtual", "seed/global-search", ...); a refusal of the whole chain gives every step's
+// reason. Settings: `steps` (comma-separated merger names) and one section per step name.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mrslam/common/config.hpp"
+#include "mrslam/fusion/merge/map_merger.hpp"
+
+namespace mrslam::fusion {
+
+class ChainMerger : public MapMerger {
+ public:
+  explicit ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps);
+  MergeResult merge(const GridMap& from, const GridMap& to) override;
+  std::string name() const override { return "chain"; }
+
+ private:
+  std::vector<std::unique_ptr<MapMerger>> steps_;
+};
+
+/// The default steps of a chain.
+constexpr const char* kDefaultChainSteps = "seed,virtual";
+
+/// The step names of a `steps` value ("seed,virtual"); throws std::invalid_argument for an empty
+/// list, "chain" itself or a repeated step.
+std::vector<std::string> parseChainSteps(const std::string& steps);
+
+}  // namespace mrslam::fusion

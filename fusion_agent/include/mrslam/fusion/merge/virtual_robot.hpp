@@ -1,0 +1,78 @@
+#pragma once
+// The virtual robot (seed 002, §4): a robot that does not exist drives along the free-space
+// skeleton of map `from`, "scanning" that map at every step (rays cast on the grid), and Monte
+// Carlo localisation finds where those scans fit in map `to`. Particles start only near `to`'s
+// skeleton (where a robot can be), move with the virtual robot's steps and are weighted by a
+// likelihood field of `to`'s walls. Clusters of converged particles give the virtual robot's pose
+// in `to` (T1) while its pose in `from` (T2) is known, so each is a hypothesis
+// T_to_from = T1 · T2⁻¹. Every hypothesis is fitted to the maps and verified (overlap, V, walls on
+// walls both ways, no rival as good elsewhere) before it is accepted.
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "mrslam/common/config.hpp"
+#include "mrslam/fusion/merge/map_merger.hpp"
+
+namespace mrslam::fusion {
+
+struct VirtualRobotSettings {
+  int beams = 120;                        ///< rays of a virtual scan over the full turn
+  double max_range_cells = 160.0;         ///< the virtual laser's reach (8 m at 5 cm)
+  int path_poses = 24;                    ///< virtual robot poses per walk
+  int path_step_cells = 8;                ///< skeleton cells between two poses of a walk
+  int walks = 12;                         ///< walks from different (seeded) skeleton cells
+  int particles = 4000;                   ///< particles of each localisation
+  double hit_sigma_cells = 1.5;           ///< σ of the likelihood field (distance to `to`'s walls)
+  double motion_sigma_cells = 0.7;        ///< σ of each particle's step, per step, cells
+  double motion_sigma_rad = 0.03;         ///< σ of each particle's turn, per step
+  double cluster_radius_cells = 5.0;      ///< particles this close form one cluster
+  double cluster_angle_rad = 0.15;        ///< ... and turned by less than this
+  int hypotheses_per_walk = 3;            ///< largest clusters taken from each walk
+  double min_verification_v = 0.9;        ///< V the fitted hypothesis must reach
+  double min_structure_agreement = 0.85;  ///< walls landing on walls, both ways
+  std::size_t min_overlap_cells = 1500;   ///< cells known in both maps at the hypothesis
+  double max_rival_share =
+      0.93;  ///< a distinct hypothesis with this share of the best's agr − dis: ambiguous
+  double fit_shift_m = 0.25;  ///< the fit searches shifts up to this far from a hypothesis
+  double fit_turn_rad = 2.0 * M_PI / 180.0;  ///< ... and turns
+  std::uint64_t seed = 1;                    ///< seed of every random draw
+};
+
+/// Reads a `virtual:` section (keys as the fields); throws ConfigError for a bad value.
+VirtualRobotSettings loadVirtualRobotSettings(const Config& config);
+
+/// A pose of the virtual robot in cell coordinates (x, y, heading).
+struct CellPose {
+  Eigen::Vector2d cell = Eigen::Vector2d::Zero();
+  double heading_rad = 0.0;
+};
+
+/// A walk along the skeleton of `map` from the skeleton cell nearest `start`: at most `poses`
+/// poses `step_cells` apart along the skeleton, each heading along the walk.
+std::vector<CellPose> skeletonWalk(const cv::Mat& skeleton, const Eigen::Vector2i& start, int poses,
+                                   int step_cells);
+
+/// A virtual scan of `map` from `pose`: the end cell (relative to the pose, robot frame, cells)
+/// of every ray that meets an occupied cell within reach; rays that leave the known map or meet
+/// nothing are dropped.
+std::vector<Eigen::Vector2d> virtualScan(const GridMap& map, const CellPose& pose,
+                                         const VirtualRobotSettings& settings);
+
+class VirtualRobotMerger : public MapMerger {
+ public:
+  explicit VirtualRobotMerger(VirtualRobotSettings settings = {}) : settings_(settings) {}
+  MergeResult merge(const GridMap& from, const GridMap& to) override;
+  std::string name() const override { return "virtual"; }
+
+  /// The hypotheses T_to_from of every walk, before verification (for tests and tuning).
+  std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to) const;
+
+ private:
+  VirtualRobotSettings settings_;
+};
+
+}  // namespace mrslam::fusion
