@@ -4,9 +4,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mrslam/fusion/merge/dissimilarity.hpp"
+#include "mrslam/fusion/merge/random_walk.hpp"
+
 namespace mrslam::fusion {
 
-ChainMerger::ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps) : steps_(std::move(steps)) {
+ChainMerger::ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps, ChainSettings settings)
+    : steps_(std::move(steps)), settings_(settings) {
   if (steps_.empty()) {
     throw std::invalid_argument("a merge chain needs at least one step");
   }
@@ -21,6 +25,9 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
     trials += result.trials;
     if (result.accepted) {
       result.trials = trials;
+      if (settings_.refine_psi) {
+        refineByPsi(from, to, settings_, result);
+      }
       return result;
     }
     reasons += (reasons.empty() ? "" : "; ") + step->name() + ": " + result.reason;
@@ -30,6 +37,40 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
   last.trials = trials;
   last.reason = reasons;
   return last;
+}
+
+namespace {
+
+double verificationAt(const GridMap& from, const CodeImage& to, const GridTransform& T_to_from,
+                      const ComparisonTables& tables) {
+  return verificationIndex(compareAt(knownCells(from, tables), to, T_to_from, tables, false));
+}
+
+}  // namespace
+
+void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,
+                 MergeResult& result) {
+  const SimilaritySettings similarity;
+  RandomWalkSettings walk;
+  walk.step_cells = 0.5;
+  walk.step_rad = 0.25 * M_PI / 180.0;
+  const RandomWalkResult refined =
+      randomWalk(prepareDissimilarity(from, similarity), prepareDissimilarity(to, similarity),
+                 result.T_to_from, walk);
+  const Eigen::Vector2d centre(0.5 * from.geometry.width, 0.5 * from.geometry.height);
+  const double shift = (refined.T_to_from.apply(centre) - result.T_to_from.apply(centre)).norm();
+  const double turn = std::abs(wrapAngle(refined.T_to_from.theta_rad - result.T_to_from.theta_rad));
+  if (shift > settings.max_refinement_cells || turn > settings.max_refinement_rad) {
+    return;
+  }
+  const ComparisonTables tables(similarity);
+  const CodeImage to_codes = codeImage(to, 2, tables);
+  const double refined_v = verificationAt(from, to_codes, refined.T_to_from, tables);
+  if (refined_v >= verificationAt(from, to_codes, result.T_to_from, tables)) {
+    result.T_to_from = refined.T_to_from;
+    result.verification = refined_v;
+    result.method += "+psi";
+  }
 }
 
 std::vector<std::string> parseChainSteps(const std::string& steps) {

@@ -30,7 +30,9 @@ std::unique_ptr<MapMerger> makeChain(const Config& chain, const Config* methods)
   } catch (const std::invalid_argument& error) {
     chain.fail("steps", error.what());
   }
-  return std::make_unique<ChainMerger>(std::move(steps));
+  ChainSettings settings;
+  settings.refine_psi = chain.getBool("refine_psi", settings.refine_psi);
+  return std::make_unique<ChainMerger>(std::move(steps), settings);
 }
 
 }  // namespace

@@ -12,8 +12,11 @@ namespace mrslam::fusion {
 
 namespace {
 
-constexpr double kDistinctCells = 10.0;              ///< hypotheses farther apart are rivals
-constexpr double kDistinctRad = 5.0 * M_PI / 180.0;  ///< ... or turned by more than this
+constexpr double kDistinctCells = 10.0;                ///< hypotheses farther apart are rivals
+constexpr double kDistinctRad = 5.0 * M_PI / 180.0;    ///< ... or turned by more than this
+constexpr double kPolishShiftM = 0.1;                  ///< the final fit's shifts, m
+constexpr double kPolishTurnRad = 0.6 * M_PI / 180.0;  ///< ... and turns
+constexpr double kPolishStepRad = 0.1 * M_PI / 180.0;  ///< ... in steps of this
 
 struct Judged {
   RendezvousFit fit;
@@ -50,6 +53,35 @@ Judged judge(const GridMap& from, const GridMap& to, const GridTransform& hypoth
   return judged;
 }
 
+/// T_to_from turned by `delta_rad` about the cell `pivot` of `from`.
+GridTransform turnedAbout(const GridTransform& T_to_from, const Eigen::Vector2d& pivot,
+                          double delta_rad) {
+  GridTransform turned = T_to_from;
+  turned.theta_rad += delta_rad;
+  turned.t_cells = T_to_from.apply(pivot) - (turned.apply(pivot) - turned.t_cells);
+  return turned;
+}
+
+/// A building of right angles fits itself turned by 90° or 180° nearly as well: the best
+/// hypothesis turned so about its overlap, each fitted within ±rotation_rival_shift_m, must
+/// score clearly less. Returns the largest such score as a share of the best's.
+double rotationRivalShare(const GridMap& from, const GridMap& to, const Judged& best,
+                          const Eigen::Vector2d& pivot, const VirtualRobotSettings& settings) {
+  RendezvousSettings fit_settings;
+  fit_settings.max_refinement_m = settings.rotation_rival_shift_m;
+  fit_settings.max_refinement_rad = settings.fit_turn_rad;
+  fit_settings.rotation_step_rad = 0.5 * M_PI / 180.0;
+  double largest = 0.0;
+  for (const double turn : {0.5 * M_PI, M_PI, -0.5 * M_PI}) {
+    const RendezvousFit rival =
+        fitRendezvous(from, to, turnedAbout(best.fit.T_to_from, pivot, turn), fit_settings);
+    const double similarity =
+        static_cast<double>(rival.overlap_cells) * (2.0 * rival.verification - 1.0);
+    largest = std::max(largest, similarity / best.similarity);
+  }
+  return largest;
+}
+
 Eigen::Vector2d centreOf(const GridMap& map) {
   return Eigen::Vector2d(0.5 * map.geometry.width, 0.5 * map.geometry.height);
 }
@@ -79,6 +111,8 @@ VirtualRobotSettings loadVirtualRobotSettings(const Config& config) {
   s.min_overlap_cells = static_cast<std::size_t>(
       config.getInt("min_overlap_cells", static_cast<long long>(s.min_overlap_cells), {0.0, 1e9}));
   s.max_rival_share = config.getDouble("max_rival_share", s.max_rival_share, {0.0, 1.0});
+  s.rotation_rival_shift_m =
+      config.getDouble("rotation_rival_shift_m", s.rotation_rival_shift_m, {0.0, 100.0});
   s.fit_shift_m = config.getDouble("fit_shift_m", s.fit_shift_m, {0.0, 10.0});
   s.fit_turn_rad = config.getDouble("fit_turn_rad", s.fit_turn_rad, {0.0, M_PI});
   s.seed = static_cast<std::uint64_t>(
@@ -125,8 +159,23 @@ MergeResult VirtualRobotMerger::merge(const GridMap& from, const GridMap& to) {
       return result;
     }
   }
+  const double turned_share = rotationRivalShare(from, to, *best, pivot, settings_);
+  if (turned_share >= settings_.max_rival_share) {
+    std::ostringstream reason;
+    reason << "virtual robot: ambiguous: the fit turned by a right angle scores " << turned_share
+           << " of the best";
+    result.reason = reason.str();
+    return result;
+  }
+  // A last, finer fit: the hypotheses' fit steps 0.25°.
+  RendezvousSettings polish;
+  polish.max_refinement_m = kPolishShiftM;
+  polish.max_refinement_rad = kPolishTurnRad;
+  polish.rotation_step_rad = kPolishStepRad;
+  const RendezvousFit polished = fitRendezvous(from, to, best->fit.T_to_from, polish);
   result.accepted = true;
-  result.T_to_from = best->fit.T_to_from;
+  result.T_to_from = polished.T_to_from;
+  result.verification = polished.verification;
   result.entropy = scoreOverlap(from, to, result.T_to_from).entropy_bits;
   return result;
 }

@@ -4,6 +4,7 @@
 // step ("virtual", "seed/global-search", ...); a refusal of the whole chain gives every step's
 // reason. Settings: `steps` (comma-separated merger names) and one section per step name.
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,15 +14,28 @@
 
 namespace mrslam::fusion {
 
+struct ChainSettings {
+  /// Refine an accepted transform by the random walk of Carpin's ψ (seed 002, Algorithm 3); the
+  /// refinement is kept when it stays within these bounds and V does not drop.
+  bool refine_psi = false;
+  double max_refinement_cells = 2.0;         ///< largest shift of the refinement kept
+  double max_refinement_rad = M_PI / 180.0;  ///< largest turn of the refinement kept
+};
+
 class ChainMerger : public MapMerger {
  public:
-  explicit ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps);
+  explicit ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps, ChainSettings settings = {});
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "chain"; }
 
  private:
   std::vector<std::unique_ptr<MapMerger>> steps_;
+  ChainSettings settings_;
 };
+
+/// Refines an accepted result by ψ (see ChainSettings); `method` gains "+psi" when it is kept.
+void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,
+                 MergeResult& result);
 
 /// The default steps of a chain.
 constexpr const char* kDefaultChainSteps = "seed,virtual";

@@ -37,6 +37,9 @@ struct VirtualRobotSettings {
   std::size_t min_overlap_cells = 1500;   ///< cells known in both maps at the hypothesis
   double max_rival_share =
       0.93;  ///< a distinct hypothesis with this share of the best's agr − dis: ambiguous
+  /// The best hypothesis turned by ±90° and 180° about its overlap is fitted within this
+  /// shift, m; scoring max_rival_share of the best or more makes the merge ambiguous.
+  double rotation_rival_shift_m = 1.0;
   double fit_shift_m = 0.25;  ///< the fit searches shifts up to this far from a hypothesis
   double fit_turn_rad = 2.0 * M_PI / 180.0;  ///< ... and turns
   std::uint64_t seed = 1;                    ///< seed of every random draw
