@@ -13,7 +13,7 @@
 namespace mrslam::test {
 namespace {
 
-TEST(SimulatorDemoTest, DemoConfigPlacesRobotsAtTheirTrueStarts) {
+TEST(SimulatorDemoTest, SimulatedTeamConfigPlacesRobotsAtTheirTrueStarts) {
   const fusion::FusionConfig config =
       fusion::loadFusionConfig(sourcePath("config/sim_fusion.yaml"));
   const SE2 T_world_reference = drivers::builtInStartPose(0);
@@ -52,6 +52,20 @@ TEST(SimulatorDemoTest, ThreeRobotsAndAFusionAgentProduceTheGlobalMap) {
   }
   EXPECT_GT(known * 0.05 * 0.05, 60.0);
   EXPECT_LT(global.geometry.width * 0.05, 30.0);
+  // Nobody gave the demo the robots' starts: it placed them by their rendezvous.
+  std::ifstream transforms_file(out / "transforms.json");
+  const nlohmann::json transforms = nlohmann::json::parse(transforms_file);
+  const SE2 T_world_reference = drivers::builtInStartPose(0);
+  for (const auto& robot : transforms["robots"]) {
+    const std::string id = robot["id"];
+    ASSERT_TRUE(robot["placed"].get<bool>()) << id;
+    const int route = std::stoi(id.substr(5)) - 1;  // robotN drives route N-1
+    const SE2 truth = T_world_reference.inverse() * drivers::builtInStartPose(route);
+    EXPECT_NEAR(robot["x"].get<double>(), truth.x(), 0.15) << id;
+    EXPECT_NEAR(robot["y"].get<double>(), truth.y(), 0.15) << id;
+    EXPECT_NEAR(wrapAngle(robot["theta"].get<double>() - truth.theta()), 0.0, 1.5 * M_PI / 180.0)
+        << id;
+  }
   EXPECT_TRUE(std::filesystem::exists(out / "global_map.bt"));
   EXPECT_TRUE(std::filesystem::exists(out / "global_map.png"));
 }

@@ -6,7 +6,9 @@
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "mrslam/common/shutdown.hpp"
@@ -14,6 +16,28 @@
 #include "mrslam/tools/child_process.hpp"
 
 namespace {
+
+/// One line per robot: how the fusion agent placed it (the demo finds no transform given).
+void reportPlacements(const std::filesystem::path& transforms_path) {
+  std::ifstream file(transforms_path);
+  const nlohmann::json transforms = nlohmann::json::parse(file, nullptr, false);
+  if (transforms.is_discarded() || !transforms.contains("robots")) {
+    spdlog::warn("demo: no placements in {}", transforms_path.string());
+    return;
+  }
+  for (const nlohmann::json& robot : transforms["robots"]) {
+    if (!robot.value("placed", false)) {
+      spdlog::warn("demo: {} not placed ({})", robot.value("id", "?"), robot.value("source", ""));
+    } else if (robot["verification"].is_number()) {
+      spdlog::info("demo: {} placed at ({:.2f} m, {:.2f} m, {:.1f} deg) by {} (V {:.3f})",
+                   robot.value("id", "?"), robot.value("x", 0.0), robot.value("y", 0.0),
+                   robot.value("theta", 0.0) * 180.0 / M_PI, robot.value("source", ""),
+                   robot["verification"].get<double>());
+    } else {
+      spdlog::info("demo: {} is the {}", robot.value("id", "?"), robot.value("source", ""));
+    }
+  }
+}
 
 namespace fs = std::filesystem;
 using mrslam::tools::ChildProcess;
@@ -70,7 +94,7 @@ int runDemo(const DemoOptions& options) {
   const std::string fusion_program =
       (fs::path(options.bin_dir) / "fusion_agent" / "fusion_agent").string();
   std::vector<std::string> fusion_argv = agentArguments(
-      fusion_program, (fs::path(options.config_dir) / "sim_fusion.yaml").string(), options);
+      fusion_program, (fs::path(options.config_dir) / "demo_fusion.yaml").string(), options);
   fusion_argv.insert(fusion_argv.end(),
                      {"--out", out.string(), "--max-runtime", std::to_string(options.timeout_s)});
   auto fusion = std::make_unique<ChildProcess>(fusion_argv, (out / "logs" / "fusion.log").string());
@@ -93,6 +117,7 @@ int runDemo(const DemoOptions& options) {
   if (!robots_ok || !fusion_ok) {
     return 1;
   }
+  reportPlacements(out / "transforms.json");
   spdlog::info("demo: done. Global map: {} (+ .pgm, .png, .bt); placements: {}; robot maps: {}",
                (out / "global_map.yaml").string(), (out / "transforms.json").string(),
                (out / "robots").string());
@@ -104,7 +129,7 @@ int runDemo(const DemoOptions& options) {
 int main(int argc, char** argv) {
   CLI::App app{"mrslam demo: three simulated robots and a fusion agent over DDS"};
   DemoOptions options;
-  app.add_option("--config-dir", options.config_dir, "folder of sim_robot*.yaml, sim_fusion.yaml")
+  app.add_option("--config-dir", options.config_dir, "folder of sim_robot*.yaml, demo_fusion.yaml")
       ->required();
   app.add_option("--bin-dir", options.bin_dir,
                  "build folder holding robot_agent/ and fusion_agent/")
