@@ -30,6 +30,7 @@ void writeTransformsJson(const GlobalMapResult& result, const std::string& path)
         placement.verification ? nlohmann::json(*placement.verification) : nlohmann::json();
     robot["source"] = placement.source;
     robot["least_squares"] = placement.least_squares;
+    robot["methods"] = placement.methods;
     robots.push_back(robot);
   }
   const nlohmann::json document = {{"reference", result.reference_robot}, {"robots", robots}};

@@ -195,6 +195,7 @@ std::vector<Placement> TeamGraph::place(const std::string& reference,
     SE2 T_reference_robot;
     double weakest_verification = 1.0;
     bool through_estimates = false;
+    std::string methods;  ///< of the estimates on the path, "+"-joined, each once
   };
   std::map<std::string, Reached> reached;
   reached[reference].cost = 0.0;
@@ -225,6 +226,11 @@ std::vector<Placement> TeamGraph::place(const std::string& reference,
         there.T_reference_robot = here.T_reference_robot * T_robot_next;
         there.weakest_verification = std::min(here.weakest_verification, edge.verification);
         there.through_estimates = here.through_estimates || !edge.configured;
+        there.methods = here.methods;
+        if (!edge.configured &&
+            ("+" + there.methods + "+").find("+" + edge.method + "+") == std::string::npos) {
+          there.methods += (there.methods.empty() ? "" : "+") + edge.method;
+        }
         frontier.push({next_cost, next});
       }
     }
@@ -256,6 +262,7 @@ std::vector<Placement> TeamGraph::place(const std::string& reference,
       placement.least_squares = has_loops && found->second.through_estimates;
       if (found->second.through_estimates) {
         placement.verification = found->second.weakest_verification;
+        placement.methods = found->second.methods;
         placement.source = "merge";
       } else {
         placement.source = "config";

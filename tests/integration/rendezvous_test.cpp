@@ -116,6 +116,7 @@ TEST(RendezvousTeamTest, RobotsArePlacedByTheirRendezvousAloneOverDds) {
     }
     ++placed;
     EXPECT_EQ(robot["source"], "merge") << id;
+    EXPECT_EQ(robot["methods"], "rendezvous") << id;
     const int route = id == "robot2" ? 1 : 2;
     const SE2 truth = T_world_reference.inverse() * drivers::builtInStartPose(route);
     EXPECT_NEAR(robot["x"].get<double>(), truth.x(), 0.1) << id;

@@ -31,7 +31,8 @@ void reportPlacements(const std::filesystem::path& transforms_path) {
     } else if (robot["verification"].is_number()) {
       spdlog::info("demo: {} placed at ({:.2f} m, {:.2f} m, {:.1f} deg) by {} (V {:.3f})",
                    robot.value("id", "?"), robot.value("x", 0.0), robot.value("y", 0.0),
-                   robot.value("theta", 0.0) * 180.0 / M_PI, robot.value("source", ""),
+                   robot.value("theta", 0.0) * 180.0 / M_PI,
+                   robot.value("methods", robot.value("source", "")),
                    robot["verification"].get<double>());
     } else {
       spdlog::info("demo: {} is the {}", robot.value("id", "?"), robot.value("source", ""));

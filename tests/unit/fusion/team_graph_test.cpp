@@ -137,6 +137,7 @@ TEST(TeamGraphTest, RedundantPairsPlaceRobotsByLeastSquaresBetweenThePaths) {
   EXPECT_FALSE(placements[0].least_squares) << "the reference stays where it is";
   EXPECT_TRUE(placements[1].least_squares);
   EXPECT_TRUE(placements[2].least_squares);
+  EXPECT_EQ(placements[2].methods, "test");
   // Equal weights: c lands between its two paths, not on either.
   const double c_x = placements[2].T_reference_robot.x();
   EXPECT_GT(c_x, T_a_c.x() + 0.02);

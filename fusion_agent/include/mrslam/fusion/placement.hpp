@@ -15,6 +15,9 @@ struct Placement {
   SE2 T_reference_robot;
   std::optional<double> verification;  ///< V of the merge that placed it (none when configured)
   std::string source;                  ///< "reference", "config", or why it is not placed
+  /// The methods of the estimates on its path from the reference ("seed", "rendezvous", ...;
+  /// several joined by "+"), empty when it was not placed through estimates.
+  std::string methods;
   /// Its pose is the least-squares one over redundant verified pairs (loops), not one path's.
   bool least_squares = false;
 };
