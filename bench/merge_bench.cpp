@@ -70,6 +70,7 @@ void BM_SeedMerge400(benchmark::State& state, const char* file) {
     total.translation += last.translation;
     total.verification += last.verification;
     total.fallback += last.fallback;
+    total.global += last.global;
   }
   std::nth_element(times.begin(), times.begin() + static_cast<long>(times.size() / 2), times.end());
   state.counters["median_ms"] = times[times.size() / 2];
@@ -77,7 +78,7 @@ void BM_SeedMerge400(benchmark::State& state, const char* file) {
       static_cast<double>(accepted) / static_cast<double>(times.size());
   const double sum =
       milliseconds(total.edges + total.radon + total.segments + total.correlation + total.poses +
-                   total.translation + total.verification + total.fallback);
+                   total.translation + total.verification + total.fallback + total.global);
   const auto share = [&](const char* name, SeedMergeTimings::Duration block) {
     state.counters[name] = milliseconds(block) / sum;
   };
@@ -89,6 +90,7 @@ void BM_SeedMerge400(benchmark::State& state, const char* file) {
   share("translation", total.translation);
   share("verification", total.verification);
   share("fallback", total.fallback);
+  share("global", total.global);
 }
 BENCHMARK_CAPTURE(BM_SeedMerge400, intel, "carpin-intel.txt")
     ->Unit(benchmark::kMillisecond)

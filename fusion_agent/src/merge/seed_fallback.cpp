@@ -113,14 +113,14 @@ std::vector<cv::Point> strongestShifts(cv::Mat correlation, int count) {
 }
 
 Hypothesis bestNearby(const GridTransform& coarse, const CoarseScorer& scorer) {
-  Hypothesis best{coarse, -2.0};
+  Hypothesis best{coarse, -2.0, Stage::kRadonFallback};
   for (int dy = -kCoarse; dy <= kCoarse; dy += 2) {
     for (int dx = -kCoarse; dx <= kCoarse; dx += 2) {
       GridTransform candidate = coarse;
       candidate.t_cells += Eigen::Vector2d(dx, dy);
       const double score = scorer.score(candidate);
       if (score > best.coarse_score) {
-        best = {candidate, score};
+        best = {candidate, score, Stage::kRadonFallback};
       }
     }
   }

@@ -69,6 +69,13 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
       inputs.occupied_to.push_back(cell);
     }
   }
+  inputs.occupied_to_samples =
+      sampleKnownCells(inputs.occupied_to, tables_, settings_.search_occupied_samples, 0);
+  for (const CellSample& cell : inputs.coarse_samples) {
+    if (tables_.isOccupied(cell.code)) {
+      inputs.occupied_from_samples.push_back(cell);
+    }
+  }
   return inputs;
 }
 
@@ -110,23 +117,27 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
 
   const seed::SearchInputs inputs = searchInputs(from, to);  // block 8
   std::vector<seed::Candidate> candidates =
-      seed::searchCandidates(hypotheses, inputs, tables_, settings_);
+      seed::searchCandidates(hypotheses, settings_.refined_hypotheses, inputs, tables_, settings_);
   seed::Refined refined = refineBest(candidates, inputs);
   lap(clock, timings_.translation);
 
   if ((candidates.empty() || !refusal(refined).empty()) && settings_.radon_fallback) {
     const std::vector<seed::Hypothesis> fallback = seed::fallbackHypotheses(
-        prepared_from, prepared_to, to, radon_correlation, scorer, settings_);
+        prepared_from, prepared_to, to, radon_correlation, scorer, settings_);  // step 9
     result.trials += static_cast<int>(fallback.size());
-    const std::vector<seed::Candidate> tried = candidates;
-    candidates = seed::mergeCandidates(
-        candidates, seed::searchCandidates(fallback, inputs, tables_, settings_), settings_);
-    if (tried.empty() || (!candidates.empty() &&
-                          !sameTransform(candidates.front().T_to_from, tried.front().T_to_from))) {
-      refined = refineBest(candidates, inputs);
-    }
-    refined.rival_share = seed::rivalShare(candidates, inputs, settings_);
+    addCandidates(
+        seed::searchCandidates(fallback, settings_.refined_hypotheses, inputs, tables_, settings_),
+        inputs, candidates, refined);
     lap(clock, timings_.fallback);
+  }
+  if ((candidates.empty() || !refusal(refined).empty()) && settings_.global_search) {
+    const std::vector<seed::Hypothesis> global =
+        seed::globalHypotheses(from, to, scorer, inputs, settings_);  // step 10
+    result.trials += static_cast<int>(global.size());
+    addCandidates(
+        seed::searchCandidates(global, settings_.global_candidates, inputs, tables_, settings_),
+        inputs, candidates, refined);
+    lap(clock, timings_.global);
   }
 
   if (candidates.empty()) {
@@ -146,6 +157,19 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
   return result;
 }
 
+void SeedMerger::addCandidates(const std::vector<seed::Candidate>& more,
+                               const seed::SearchInputs& inputs,
+                               std::vector<seed::Candidate>& candidates,
+                               seed::Refined& refined) const {
+  const std::vector<seed::Candidate> tried = candidates;
+  candidates = seed::mergeCandidates(candidates, more, settings_);
+  if (tried.empty() || (!candidates.empty() &&
+                        !sameTransform(candidates.front().T_to_from, tried.front().T_to_from))) {
+    refined = refineBest(candidates, inputs);
+  }
+  refined.rival_share = seed::rivalShare(candidates, inputs, tables_, settings_);
+}
+
 std::optional<seed::Refined> SeedMerger::nextAcceptable(
     const std::vector<seed::Candidate>& candidates, const seed::SearchInputs& inputs) const {
   const std::size_t judged =
@@ -158,7 +182,8 @@ std::optional<seed::Refined> SeedMerger::nextAcceptable(
       }
     }
     seed::Refined refined = seed::finalize(candidates[k].T_to_from, inputs, tables_, settings_);
-    refined.rival_share = seed::rivalShare(facing, inputs, settings_);
+    refined.stage = candidates[k].stage;
+    refined.rival_share = seed::rivalShare(facing, inputs, tables_, settings_);
     if (refusal(refined).empty()) {
       return refined;
     }
@@ -171,7 +196,8 @@ seed::Refined SeedMerger::refineBest(const std::vector<seed::Candidate>& candida
   seed::Refined refined;
   if (!candidates.empty()) {
     refined = seed::finalize(candidates.front().T_to_from, inputs, tables_, settings_);
-    refined.rival_share = seed::rivalShare(candidates, inputs, settings_);
+    refined.stage = candidates.front().stage;
+    refined.rival_share = seed::rivalShare(candidates, inputs, tables_, settings_);
   }
   return refined;
 }
@@ -179,6 +205,7 @@ seed::Refined SeedMerger::refineBest(const std::vector<seed::Candidate>& candida
 void SeedMerger::judge(const seed::Refined& refined, const GridMap& from, const GridMap& to,
                        MergeResult& result) const {
   result.T_to_from = refined.T_to_from;
+  result.method = seed::stageName(refined.stage);
   result.verification = verificationIndex(refined.full);
   result.entropy = mergedEntropy(mapEntropy(from, tables_), mapEntropy(to, tables_), refined.full);
   result.reason = refusal(refined);

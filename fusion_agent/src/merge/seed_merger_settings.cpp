@@ -110,6 +110,8 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       section.getDouble("max_rival_share", settings.max_rival_share, {0.0, 1.0});
   settings.judged_candidates =
       static_cast<int>(section.getInt("judged_candidates", settings.judged_candidates, {1, 100}));
+  settings.wall_anchor = section.getBool("wall_anchor", settings.wall_anchor);
+  settings.wall_ranking = section.getBool("wall_ranking", settings.wall_ranking);
   settings.wall_icp_iterations = static_cast<int>(
       section.getInt("wall_icp_iterations", settings.wall_icp_iterations, {0, 1000}));
   settings.wall_icp_distance_cells =
@@ -123,6 +125,26 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       static_cast<std::uint32_t>(section.getInt("seed", settings.seed, {0, 4294967295.0}));
 }
 
+void readGlobalSearchSettings(const Config& section, SeedMergerSettings& settings) {
+  settings.global_search = section.getBool("global_search", settings.global_search);
+  settings.global.coarse_cells =
+      readInt(section, "global_coarse_cells", settings.global.coarse_cells, {1, 64});
+  settings.global.rotation_step_rad =
+      kDegree * section.getDouble("global_rotation_step_deg",
+                                  settings.global.rotation_step_rad / kDegree, {0.1, 45.0});
+  settings.global.peaks_per_rotation =
+      readInt(section, "global_peaks_per_rotation", settings.global.peaks_per_rotation, {1, 100});
+  settings.global.kept_hypotheses =
+      readInt(section, "global_hypotheses", settings.global.kept_hypotheses, {1, 1000});
+  settings.global.free_weight =
+      section.getDouble("global_free_weight", settings.global.free_weight, {0.0, 10.0});
+  settings.global_polish_step_rad =
+      kDegree * section.getDouble("global_polish_step_deg",
+                                  settings.global_polish_step_rad / kDegree, {0.05, 10.0});
+  settings.global_candidates =
+      readInt(section, "global_candidates", settings.global_candidates, {1, 1000});
+}
+
 }  // namespace
 
 SeedMergerSettings loadSeedMergerSettings(const Config& section) {
@@ -131,6 +153,7 @@ SeedMergerSettings loadSeedMergerSettings(const Config& section) {
   readShapeSettings(section, settings);
   readSearchSettings(section, settings);
   readAcceptanceSettings(section, settings);
+  readGlobalSearchSettings(section, settings);
   return settings;
 }
 

@@ -221,21 +221,41 @@ TranslationSearch searchAround(const GridTransform& T_to_from, const SearchInput
 
 namespace {
 
+// The lesser structure agreement of the two directions: `from`'s sampled walls on `to`'s and
+// `to`'s walls on `from`'s (a wrong transform often passes one direction only).
+double twoWayStructure(const GridTransform& T_to_from, const SearchInputs& inputs,
+                       const ComparisonTables& tables) {
+  return std::min(
+      structureAgreement(inputs.coarse_samples, inputs.to, T_to_from, tables).index(),
+      structureAgreement(inputs.occupied_to, inputs.from, T_to_from.inverse(), tables).index());
+}
+
 void orderCandidates(std::vector<Candidate>& candidates, const SeedMergerSettings& settings) {
   std::stable_sort(candidates.begin(), candidates.end(),
                    [&](const Candidate& a, const Candidate& b) {
                      const bool a_meets = a.structure >= settings.min_structure_agreement;
                      const bool b_meets = b.structure >= settings.min_structure_agreement;
-                     return a_meets != b_meets ? a_meets : a.similarity > b.similarity;
+                     if (a_meets != b_meets) {
+                       return a_meets;
+                     }
+                     return settings.wall_ranking ? a.walls > b.walls : a.similarity > b.similarity;
                    });
 }
 
+// The best shift within ±1 cell and its agr - dis.
+std::pair<GridTransform, long long> bestNearby(const GridTransform& T_to_from,
+                                               const SearchInputs& inputs,
+                                               const ComparisonTables& tables) {
+  const TranslationSearch search =
+      searchTranslation(inputs.coarse_samples, inputs.to, T_to_from, 1, tables, false);
+  return {search.best_similarity, search.at_best_similarity.similarity()};
+}
+
+}  // namespace
+
 GridTransform polishRotation(const GridTransform& T_to_from, const SearchInputs& inputs,
                              const ComparisonTables& tables, const SeedMergerSettings& settings) {
-  GridTransform best = T_to_from;
-  long long best_similarity =
-      searchTranslation(inputs.coarse_samples, inputs.to, best, 1, tables, false)
-          .at_best_similarity.similarity();
+  auto [best, best_score] = bestNearby(T_to_from, inputs, tables);
   double step = settings.rotation_polish_step_rad;
   for (int level = 0; level < 2; ++level, step *= 0.5) {  // coarse steps, then half steps
     const GridTransform centre = best;
@@ -247,36 +267,67 @@ GridTransform polishRotation(const GridTransform& T_to_from, const SearchInputs&
       GridTransform turned = centre;
       turned.theta_rad = centre.theta_rad + i * step;
       turned.t_cells = translationAfterTurn(centre, turned.theta_rad, inputs);
-      const TranslationSearch search =
-          searchTranslation(inputs.coarse_samples, inputs.to, turned, 1, tables, false);
-      if (search.at_best_similarity.similarity() > best_similarity) {
-        best_similarity = search.at_best_similarity.similarity();
-        best = search.best_similarity;
+      const auto [shifted, score] = bestNearby(turned, inputs, tables);
+      if (score > best_score) {
+        best_score = score;
+        best = shifted;
       }
     }
   }
   return best;
 }
 
-}  // namespace
+const char* stageName(Stage stage) {
+  switch (stage) {
+    case Stage::kRadonFallback:
+      return "seed/radon-fallback";
+    case Stage::kGlobalSearch:
+      return "seed/global-search";
+    case Stage::kSegments:
+      break;
+  }
+  return "seed";
+}
 
-std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypotheses,
+std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypotheses, int count,
                                         const SearchInputs& inputs, const ComparisonTables& tables,
                                         const SeedMergerSettings& settings) {
   std::vector<Candidate> candidates;
-  for (const Hypothesis& hypothesis : bestDistinct(hypotheses, settings.refined_hypotheses)) {
-    const TranslationSearch search = searchAround(hypothesis.T_to_from, inputs, tables, settings);
-    candidates.push_back(
-        {search.best_similarity, search.at_best_similarity.similarity(),
-         structureAgreement(inputs.coarse_samples, inputs.to, search.best_similarity, tables)
-             .index()});
+  for (const Hypothesis& hypothesis : bestDistinct(hypotheses, count)) {
+    Candidate candidate{hypothesis.T_to_from, hypothesis.stage, 0, 0.0, 0};
+    if (settings.wall_ranking) {
+      const WallSearch walls =
+          anchorOnWalls(hypothesis.T_to_from, settings.translation_window_delta, inputs, tables);
+      candidate.T_to_from = walls.best;
+      candidate.walls = walls.best_balance;
+      candidate.similarity =
+          compareAt(inputs.coarse_samples, inputs.to, walls.best, tables, false).similarity();
+    } else {
+      const TranslationSearch search = searchAround(hypothesis.T_to_from, inputs, tables, settings);
+      candidate.T_to_from = search.best_similarity;
+      candidate.similarity = search.at_best_similarity.similarity();
+    }
+    candidate.structure = twoWayStructure(candidate.T_to_from, inputs, tables);
+    candidates.push_back(candidate);
   }
   orderCandidates(candidates, settings);
   return candidates;
 }
 
+namespace {
+
+// agr - dis over all known cells at the best shift within ±1 cell (fine samples).
+long long fullSimilarity(const GridTransform& T_to_from, const SearchInputs& inputs,
+                         const ComparisonTables& tables) {
+  const TranslationSearch near =
+      searchTranslation(inputs.fine_samples, inputs.to, T_to_from, 1, tables, false);
+  return compareAt(inputs.all_samples, inputs.to, near.best_similarity, tables, false).similarity();
+}
+
+}  // namespace
+
 double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
-                  const SeedMergerSettings& settings) {
+                  const ComparisonTables& tables, const SeedMergerSettings& settings) {
   constexpr double kRivalCells = 10.0;
   if (candidates.empty() || candidates.front().similarity <= 0) {
     return 0.0;
@@ -287,7 +338,19 @@ double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& 
     const Candidate& other = candidates[i];
     if (other.structure >= settings.min_structure_agreement &&
         (other.T_to_from.apply(inputs.pivot_from) - centre).norm() > kRivalCells) {
-      return static_cast<double>(other.similarity) / static_cast<double>(chosen.similarity);
+      const long long best = fullSimilarity(chosen.T_to_from, inputs, tables);
+      const double by_similarity =
+          best > 0 ? static_cast<double>(fullSimilarity(other.T_to_from, inputs, tables)) /
+                         static_cast<double>(best)
+                   : 1.0;
+      if (!settings.wall_ranking) {
+        return by_similarity;
+      }
+      // Either measure may favour the wrong one: the rival is judged by the closer of the two.
+      const double by_walls =
+          chosen.walls > 0 ? static_cast<double>(other.walls) / static_cast<double>(chosen.walls)
+                           : 1.0;
+      return std::max(by_similarity, by_walls);
     }
   }
   return 0.0;
@@ -300,11 +363,14 @@ std::vector<Candidate> mergeCandidates(std::vector<Candidate> a, const std::vect
   return a;
 }
 
-Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
-                 const ComparisonTables& tables, const SeedMergerSettings& settings) {
-  const GridTransform polished = polishRotation(T_to_from, inputs, tables, settings);
-  TranslationSearch coarse = searchTranslation(inputs.coarse_samples, inputs.to, polished,
-                                               settings.translation_window_delta, tables, true);
+namespace {
+
+// Step 7's translation by agr - dis (the seed paper's block 8 alone).
+Refined settleBySimilarity(const GridTransform& polished, const SearchInputs& inputs,
+                           const ComparisonTables& tables, const SeedMergerSettings& settings,
+                           TranslationSearch& coarse) {
+  coarse = searchTranslation(inputs.coarse_samples, inputs.to, polished,
+                             settings.translation_window_delta, tables, true);
   const TranslationSearch fine_similarity =
       searchTranslation(inputs.fine_samples, inputs.to, coarse.best_similarity, 1, tables, false);
   Refined refined;
@@ -322,6 +388,21 @@ Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                                  settings.translation_window_delta, tables, true);
     }
   }
+  const long long best = coarse.at_best_similarity.similarity();
+  refined.translation_ambiguity =
+      best > 0 ? static_cast<double>(coarse.runner_up_similarity) / static_cast<double>(best) : 1.0;
+  return refined;
+}
+
+}  // namespace
+
+Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
+                 const ComparisonTables& tables, const SeedMergerSettings& settings) {
+  TranslationSearch coarse;
+  Refined refined = settings.wall_anchor
+                        ? settleOnWalls(T_to_from, inputs, tables, settings, coarse)
+                        : settleBySimilarity(polishRotation(T_to_from, inputs, tables, settings),
+                                             inputs, tables, settings, coarse);
   const TranslationSearch fine_entropy =
       searchTranslation(inputs.fine_samples, inputs.to, coarse.least_entropy, 1, tables);
   refined.structure = std::min(
@@ -330,9 +411,6 @@ Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
           .index());
   refined.least_entropy = fine_entropy.least_entropy;
   refined.entropy_gap_cells = (refined.T_to_from.t_cells - refined.least_entropy.t_cells).norm();
-  const long long best = coarse.at_best_similarity.similarity();
-  refined.translation_ambiguity =
-      best > 0 ? static_cast<double>(coarse.runner_up_similarity) / static_cast<double>(best) : 1.0;
   return refined;
 }
 

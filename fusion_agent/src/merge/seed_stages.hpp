@@ -42,10 +42,17 @@ struct PairCandidate {
 std::vector<PairCandidate> rankPairs(const PreparedMap& from, const PreparedMap& to,
                                      const SeedMergerSettings& settings);
 
+/// The step of the pipeline that proposed a transform (MergeResult::method names it).
+enum class Stage { kSegments, kRadonFallback, kGlobalSearch };
+
+/// "seed", "seed/radon-fallback" or "seed/global-search".
+const char* stageName(Stage stage);
+
 /// A candidate transform and its coarse score.
 struct Hypothesis {
   GridTransform T_to_from;
   double coarse_score = 0.0;
+  Stage stage = Stage::kSegments;
 };
 
 /// The coarse score (step 5 of seed_merger.hpp).
@@ -77,7 +84,9 @@ struct SearchInputs {
   Eigen::Vector2d pivot_from = Eigen::Vector2d::Zero();  ///< centre of `from`'s known cells
   CodeImage to;
   std::vector<CellSample> occupied_to;  ///< occupied cells of `to` (structure check, reversed)
-  CodeImage from;                       ///< `from` as codes (structure check, reversed)
+  std::vector<CellSample> occupied_to_samples;    ///< an even sample of them (wall balance)
+  std::vector<CellSample> occupied_from_samples;  ///< occupied cells of coarse_samples (same)
+  CodeImage from;                                 ///< `from` as codes (structure check, reversed)
 };
 
 /// Block 8 for one hypothesis: the best shift within ±δ on the coarse samples.
@@ -87,22 +96,27 @@ TranslationSearch searchAround(const GridTransform& T_to_from, const SearchInput
 /// A hypothesis after block 8's search.
 struct Candidate {
   GridTransform T_to_from;
+  Stage stage = Stage::kSegments;
   long long similarity = 0;  ///< agr - dis on the search samples
-  double structure = 0.0;    ///< structure agreement on the search samples
+  double structure = 0.0;    ///< the lesser structure agreement of both directions (samples)
+  long long walls = 0;       ///< wallBalance() (ranks the candidates with `wall_ranking`)
 };
 
-/// Block 8 on the `refined_hypotheses` best distinct hypotheses; candidates ordered best first:
-/// those whose walls meet walls (structure ≥ min_structure_agreement) before the others, each
-/// group by similarity.
-std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypotheses,
+/// Block 8 on the `count` best distinct hypotheses; candidates ordered best first: those whose
+/// walls meet walls (structure ≥ min_structure_agreement) before the others, each group by
+/// similarity.
+std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypotheses, int count,
                                         const SearchInputs& inputs, const ComparisonTables& tables,
                                         const SeedMergerSettings& settings);
 
 /// agr - dis of the best candidate after the first that meets the structure bar and puts
 /// `from`'s known cells elsewhere (more than 10 cells away at their centre), relative to the
-/// first's; 0 without one. Near 1: two different transforms explain the overlap equally well.
+/// first's; 0 without one. Both are compared alike: the best shift within ±1 cell on the fine
+/// samples, then agr - dis over all known cells. Near 1: two different transforms explain the
+/// overlap equally well. With `wall_ranking`, the larger of that and the rival's share of the
+/// first's wall balance.
 double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
-                  const SeedMergerSettings& settings);
+                  const ComparisonTables& tables, const SeedMergerSettings& settings);
 
 /// Merges two ordered candidate lists into one, in the same order.
 std::vector<Candidate> mergeCandidates(std::vector<Candidate> a, const std::vector<Candidate>& b,
@@ -110,10 +124,11 @@ std::vector<Candidate> mergeCandidates(std::vector<Candidate> a, const std::vect
 
 /// The chosen transform with the figures of block 9.
 struct Refined {
-  GridTransform T_to_from;      ///< best similarity
-  GridTransform least_entropy;  ///< least merged entropy over the same shifts
-  Agreement full;               ///< all known cells at T_to_from
-  double structure = 0.0;       ///< the lesser structure agreement of the two directions
+  GridTransform T_to_from;         ///< best similarity
+  Stage stage = Stage::kSegments;  ///< where the candidate came from
+  GridTransform least_entropy;     ///< least merged entropy over the same shifts
+  Agreement full;                  ///< all known cells at T_to_from
+  double structure = 0.0;          ///< the lesser structure agreement of the two directions
   double entropy_gap_cells = 0.0;
   double translation_ambiguity = 1.0;  ///< runner-up / best agr - dis within ±δ
   double rival_share = 0.0;            ///< rivalShare() of the candidates
@@ -130,6 +145,36 @@ Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
 GridTransform refineOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs,
                             const ComparisonTables& tables, const SeedMergerSettings& settings);
 
+/// Walls of `from` near walls of `to` minus those on `to`'s other known cells, plus the same of
+/// `to`'s walls on `from` (wall_anchor.cpp); free cells do not count.
+long long wallBalance(const GridTransform& T_to_from, const SearchInputs& inputs,
+                      const ComparisonTables& tables);
+
+/// The shift within ±reach of the largest wallBalance (the first of equals in row order, the
+/// unshifted transform before all), and the runner-up at least kRunnerUpCells away (equal to
+/// the best when the window has none).
+struct WallSearch {
+  GridTransform best;
+  long long best_balance = 0;
+  long long runner_up_balance = 0;
+};
+WallSearch anchorOnWalls(const GridTransform& T_to_from, int reach, const SearchInputs& inputs,
+                         const ComparisonTables& tables);
+
+/// Step 7's rotation polish: rotations within ±rotation_polish in rotation_polish_step steps and
+/// then half steps, each with its best shift within ±1 cell by agr - dis on the coarse samples.
+GridTransform polishRotation(const GridTransform& T_to_from, const SearchInputs& inputs,
+                             const ComparisonTables& tables, const SeedMergerSettings& settings);
+
+/// Step 7 with `wall_anchor` (wall_anchor.cpp): the translation by anchorOnWalls first, then the
+/// rotation polish, ±1 cell by agr - dis and walls onto walls by ICP (kept when agr - dis or the
+/// wall balance is at least as high), none of which can slide far. `coarse` is block 8's ±δ
+/// search around the result (for the entropy figures); the translation ambiguity is the larger
+/// of the wall balance's and agr - dis's runner-up share.
+Refined settleOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs,
+                      const ComparisonTables& tables, const SeedMergerSettings& settings,
+                      TranslationSearch& coarse);
+
 /// Step 8 of seed_merger.hpp: hypotheses from global Radon rotations and a coarse correlation
 /// over all translations.
 std::vector<Hypothesis> fallbackHypotheses(const PreparedMap& from, const PreparedMap& to,
@@ -137,5 +182,12 @@ std::vector<Hypothesis> fallbackHypotheses(const PreparedMap& from, const Prepar
                                            const std::vector<double>& radon_correlation,
                                            const CoarseScorer& scorer,
                                            const SeedMergerSettings& settings);
+
+/// Step 10 of seed_merger.hpp: hypotheses of the global search (global_search.hpp), each
+/// refined at full resolution by the coarse score over rotations within half a sweep step (and
+/// `global_polish_step`) and translations within a coarse cell.
+std::vector<Hypothesis> globalHypotheses(const GridMap& from, const GridMap& to,
+                                         const CoarseScorer& scorer, const SearchInputs& inputs,
+                                         const SeedMergerSettings& settings);
 
 }  // namespace mrslam::fusion::seed

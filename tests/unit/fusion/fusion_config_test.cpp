@@ -77,9 +77,9 @@ TEST(FusionConfigTest, TheMergeMethodMakesItsMergerWithItsSettings) {
   const FusionConfig feature = loadFusionConfig(writeConfig("merge:\n  method: feature\n"));
   ASSERT_TRUE(feature.make_merger);
   EXPECT_EQ(feature.make_merger()->name(), "feature");
-  EXPECT_THAT(
-      loadError("merge:\n  method: carpin\n"),
-      HasSubstr("fusion.yaml:2: merge.method: 'carpin' is not one of: seed, feature, none"));
+  EXPECT_THAT(loadError("merge:\n  method: carpin\n"),
+              HasSubstr("fusion.yaml:2: merge.method: 'carpin' is not one of: seed, feature, "
+                        "virtual, chain, none"));
   EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    canny_low: -1\n"),
               HasSubstr("fusion.yaml:4: merge.seed.canny_low: -1 is out of range"));
   EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    bogus: 1\n"),

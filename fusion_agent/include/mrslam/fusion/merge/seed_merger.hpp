@@ -23,8 +23,15 @@
 //    ±1 around the best, on an even sample of `search_occupied_samples` occupied and
 //    `search_free_samples` free cells of `from` (ours: so that walls, not open floor, decide).
 //    Candidates whose walls meet walls (structure agreement ≥ min_structure_agreement on the
-//    sample) rank first, then by agr - dis.
-// 7. Rotation polish (ours): rotations within ±`rotation_polish` of the best candidate in steps of
+//    sample) rank first, then by agr - dis. With `wall_ranking` (ours) a hypothesis is instead
+//    placed by the wall balance over ±δ (walls of each map within one cell of the other's walls
+//    minus those on its other known cells; wall_anchor.cpp) and ranked by it, and a rival is
+//    judged by the larger of its agr - dis share and its wall balance share: agr - dis is
+//    dominated by free cells and grows by sliding the overlap into shared open floor.
+// 7. With `wall_anchor` (ours) the translation is first fixed by the wall balance over ±δ, and
+//    the steps below move at most a cell or two from there (the ICP result is also kept when the
+//    wall balance does not drop; the translation ambiguity is the larger of the two measures').
+//    Rotation polish (ours): rotations within ±`rotation_polish` of the best candidate in steps of
 //    `rotation_polish_step` and then half that, each with ±1 cell, keep the best agr - dis; at the
 //    polished angle block 8 runs again over every shift of ±δ with the merged entropy, and ±1 cell
 //    on a sample four times denser. Then (ours) walls onto walls: point-to-point ICP of `from`'s
@@ -46,6 +53,10 @@
 //    peaks of the Radon profile correlation, each with its other half turn, are searched over all
 //    translations at once by a coarse DFT correlation (seed_fallback.cpp); its
 //    `fallback_translations` best peaks per rotation join the candidates of steps 6-8.
+// 10. Global search (ours, `global_search`): when step 9 still refuses, every rotation of a full
+//    turn is correlated over all translations on coarse grids (global_search.hpp); the best
+//    coarse transforms, refined at full resolution (seed_global.cpp), join the candidates of
+//    steps 6-8 as well. MergeResult::method names the step whose candidate is returned.
 // Randomness comes from `seed` only: one merge of the same maps always gives the same answer.
 // Choices where the description is silent: D is the distance to the segment's total-least-
 // squares line and Δ the turning angle over chords of k points; the arc histogram is that of Δ;
@@ -61,6 +72,7 @@
 #include "mrslam/common/config.hpp"
 #include "mrslam/fusion/merge/correlation.hpp"
 #include "mrslam/fusion/merge/edges.hpp"
+#include "mrslam/fusion/merge/global_search.hpp"
 #include "mrslam/fusion/merge/histograms.hpp"
 #include "mrslam/fusion/merge/map_merger.hpp"
 #include "mrslam/fusion/merge/radon.hpp"
@@ -102,12 +114,18 @@ struct SeedMergerSettings {
   double max_translation_ambiguity = 0.95;  ///< largest runner-up / best agr - dis in ±δ
   double max_rival_share = 0.93;            ///< largest agr - dis of a rival transform / best
   int judged_candidates = 3;                ///< candidates judged in turn when the best is refused
-  int wall_icp_iterations = 30;             ///< final refinement: ICP of walls onto walls (0: off)
-  double wall_icp_distance_cells = 3.0;     ///< final refinement: farthest wall matched
-  bool radon_fallback = true;               ///< try global Radon rotations when segments fail
-  int fallback_rotations = 4;               ///< fallback: Radon peaks tried (× 2 half turns)
-  int fallback_translations = 4;            ///< fallback: correlation peaks per rotation
-  std::uint32_t seed = 1;                   ///< seed of the random segment starts
+  bool wall_anchor = true;       ///< step 7: translation by walls near walls before agr - dis
+  bool wall_ranking = true;      ///< candidates placed and ranked by walls, rivals judged by both
+  int wall_icp_iterations = 30;  ///< final refinement: ICP of walls onto walls (0: off)
+  double wall_icp_distance_cells = 3.0;  ///< final refinement: farthest wall matched
+  bool radon_fallback = true;            ///< try global Radon rotations when segments fail
+  int fallback_rotations = 4;            ///< fallback: Radon peaks tried (× 2 half turns)
+  int fallback_translations = 4;         ///< fallback: correlation peaks per rotation
+  bool global_search = true;             ///< try the global search when all else is refused
+  GlobalSearchSettings global;           ///< step 10 (global_search.hpp)
+  double global_polish_step_rad = 0.5 * M_PI / 180.0;  ///< step 10: rotation step of the refinement
+  int global_candidates = 6;  ///< step 10: refined hypotheses given the ±δ search
+  std::uint32_t seed = 1;     ///< seed of the random segment starts
 };
 
 /// Reads a `seed_merger` config section (every key optional, defaults above); angles in
@@ -125,6 +143,7 @@ struct SeedMergeTimings {
   Duration translation{};   ///< block 8
   Duration verification{};  ///< block 9
   Duration fallback{};      ///< the Radon fallback, when it ran
+  Duration global{};        ///< the global search, when it ran
 };
 
 class SeedMerger : public MapMerger {
@@ -135,6 +154,9 @@ class SeedMerger : public MapMerger {
   const SeedMergeTimings& lastTimings() const { return timings_; }
 
  private:
+  /// Adds `more` to the ordered `candidates`; `refined` follows a new best and the rival share.
+  void addCandidates(const std::vector<seed::Candidate>& more, const seed::SearchInputs& inputs,
+                     std::vector<seed::Candidate>& candidates, seed::Refined& refined) const;
   /// The first of the next `judged_candidates` - 1 candidates that passes block 9, refined.
   std::optional<seed::Refined> nextAcceptable(const std::vector<seed::Candidate>& candidates,
                                               const seed::SearchInputs& inputs) const;

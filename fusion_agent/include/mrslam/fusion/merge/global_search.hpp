@@ -1,0 +1,50 @@
+#pragma once
+// Global search (ours, after the exhaustive correlative search of scan matching): hypotheses of
+// T_to_from from every rotation of a full turn, with no segment, line or Radon peak needed. It
+// finds transforms that the seed pipeline's hypotheses miss (turned 90° or 180° from the truth
+// in rooms of similar sides, few verified segments in clutter).
+//
+// 1. Both maps are coarsened by `coarse_cells` (a coarse cell is occupied when it holds an
+//    occupied cell, free when it holds known free cells only). `to` becomes the target
+//    W_to = O_to - w F_to (w = `free_weight`).
+// 2. For every rotation θ_k = k · `rotation_step` over the full turn, `from`'s coarse occupied and
+//    free images are turned (bilinear) onto a canvas, O_from(θ) and F_from(θ).
+// 3. The score of every translation at once, by DFT:
+//      s(t) = Σ_u O_from(θ)(u) W_to(u + t) - w Σ_u F_from(θ)(u) O_to(u + t),
+//    walls on walls count, walls of either map on the other's known free space cost w.
+// 4. The `peaks_per_rotation` strongest peaks of each rotation (no two within `peak_separation`
+//    coarse cells) join one list; the `kept_hypotheses` best of it, no two alike (within
+//    `coarse_cells` cells and 1.5 rotation steps), are returned, best first.
+// The answer is coarse: within about one coarse cell and half a rotation step of a true peak.
+// The caller refines it (seed_global.cpp) and verifies it like any other hypothesis.
+
+#include <vector>
+
+#include "mrslam/common/grid_map.hpp"
+#include "mrslam/fusion/merge/map_merger.hpp"
+#include "mrslam/fusion/merge/similarity.hpp"
+
+namespace mrslam::fusion {
+
+struct GlobalSearchSettings {
+  int coarse_cells = 4;                           ///< cells per coarse cell of the sweep
+  double rotation_step_rad = 3.0 * M_PI / 180.0;  ///< step between the rotations of the sweep
+  int peaks_per_rotation = 3;                     ///< correlation peaks kept per rotation
+  int kept_hypotheses = 12;                       ///< best peaks over all rotations returned
+  double free_weight = 0.5;                       ///< w: cost of a wall on the other's free space
+  int peak_separation = 2;                        ///< coarse cells between two peaks of a rotation
+};
+
+/// A coarse transform and its correlation score s(t).
+struct GlobalHypothesis {
+  GridTransform T_to_from;
+  double score = 0.0;
+};
+
+/// Steps 1-4: the best coarse transforms of `from` onto `to`, best first (empty when either map
+/// has no occupied cell).
+std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& to,
+                                           const GlobalSearchSettings& settings,
+                                           const SimilaritySettings& classes);
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,105 @@
+// Wall anchoring (ours, step 7 of seed_merger.hpp): the translation that lays the most walls of
+// each map near walls of the other. agr - dis is dominated by free cells, so near the truth it
+// often grows by sliding the overlap a few cells into more shared open floor while the walls move
+// into unknown space (on real crops up to 10 cells off a true start); walls alone pin it. The
+// discrete searches of agr - dis and the wall ICP then settle the last cell and degree.
+
+#include <algorithm>
+#include <cstdlib>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "seed_stages.hpp"
+
+namespace mrslam::fusion::seed {
+
+long long wallBalance(const GridTransform& T_to_from, const SearchInputs& inputs,
+                      const ComparisonTables& tables) {
+  const StructureAgreement forward =
+      structureAgreement(inputs.occupied_from_samples, inputs.to, T_to_from, tables);
+  const StructureAgreement backward =
+      structureAgreement(inputs.occupied_to_samples, inputs.from, T_to_from.inverse(), tables);
+  return forward.near - forward.far + backward.near - backward.far;
+}
+
+namespace {
+
+using ShiftBalance = std::pair<Eigen::Vector2i, long long>;
+
+// The largest balance among the shifts at least kRunnerUpCells (Chebyshev) from `best_shift`.
+std::optional<long long> runnerUp(const std::vector<ShiftBalance>& balances,
+                                  const Eigen::Vector2i& best_shift) {
+  std::optional<long long> runner_up;
+  for (const auto& [shift, balance] : balances) {
+    const Eigen::Vector2i gap = shift - best_shift;
+    if (std::max(std::abs(gap.x()), std::abs(gap.y())) >= kRunnerUpCells &&
+        (!runner_up || balance > *runner_up)) {
+      runner_up = balance;
+    }
+  }
+  return runner_up;
+}
+
+}  // namespace
+
+WallSearch anchorOnWalls(const GridTransform& T_to_from, int reach, const SearchInputs& inputs,
+                         const ComparisonTables& tables) {
+  WallSearch search;
+  search.best = T_to_from;
+  search.best_balance = wallBalance(T_to_from, inputs, tables);
+  Eigen::Vector2i best_shift = Eigen::Vector2i::Zero();
+  std::vector<ShiftBalance> balances;
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const Eigen::Vector2i shift(dx, dy);
+      GridTransform shifted = T_to_from;
+      shifted.t_cells += shift.cast<double>();
+      const long long balance =
+          dx == 0 && dy == 0 ? search.best_balance : wallBalance(shifted, inputs, tables);
+      balances.emplace_back(shift, balance);
+      if (balance > search.best_balance) {
+        search.best_balance = balance;
+        search.best = shifted;
+        best_shift = shift;
+      }
+    }
+  }
+  search.runner_up_balance = runnerUp(balances, best_shift).value_or(search.best_balance);
+  return search;
+}
+
+Refined settleOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs,
+                      const ComparisonTables& tables, const SeedMergerSettings& settings,
+                      TranslationSearch& coarse) {
+  const int reach = settings.translation_window_delta;
+  const GridTransform anchored = anchorOnWalls(T_to_from, reach, inputs, tables).best;
+  const GridTransform polished = polishRotation(anchored, inputs, tables, settings);
+  Refined refined;
+  refined.T_to_from =
+      searchTranslation(inputs.fine_samples, inputs.to, polished, 1, tables, false).best_similarity;
+  refined.full = compareAt(inputs.all_samples, inputs.to, refined.T_to_from, tables);
+  if (settings.wall_icp_iterations > 0) {
+    const GridTransform on_walls = refineOnWalls(refined.T_to_from, inputs, tables, settings);
+    const Agreement at_walls = compareAt(inputs.all_samples, inputs.to, on_walls, tables);
+    if (at_walls.similarity() >= refined.full.similarity() ||
+        wallBalance(on_walls, inputs, tables) >= wallBalance(refined.T_to_from, inputs, tables)) {
+      refined.T_to_from = on_walls;
+      refined.full = at_walls;
+    }
+  }
+  const WallSearch walls = anchorOnWalls(refined.T_to_from, reach, inputs, tables);
+  coarse =
+      searchTranslation(inputs.coarse_samples, inputs.to, refined.T_to_from, reach, tables, true);
+  // Either measure may be flat along a corridor: the translation is judged by the flatter.
+  const long long best = coarse.at_best_similarity.similarity();
+  refined.translation_ambiguity = std::max(
+      walls.best_balance > 0
+          ? static_cast<double>(walls.runner_up_balance) / static_cast<double>(walls.best_balance)
+          : 1.0,
+      best > 0 ? static_cast<double>(coarse.runner_up_similarity) / static_cast<double>(best)
+               : 1.0);
+  return refined;
+}
+
+}  // namespace mrslam::fusion::seed
