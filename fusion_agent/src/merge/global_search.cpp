@@ -128,6 +128,17 @@ std::vector<GlobalHypothesis> bestDistinct(std::vector<GlobalHypothesis> all, in
   return kept;
 }
 
+// Whether the sweep turns `from` by theta: every rotation, or those within one step (and a
+// rounding margin) of a wanted one.
+bool sweeps(double theta, const GlobalSearchSettings& settings) {
+  return settings.only_rotations_rad.empty() ||
+         std::any_of(settings.only_rotations_rad.begin(), settings.only_rotations_rad.end(),
+                     [&](double wanted) {
+                       return std::abs(std::remainder(theta - wanted, 2.0 * M_PI)) <=
+                              1.01 * settings.rotation_step_rad;
+                     });
+}
+
 }  // namespace
 
 std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& to,
@@ -163,6 +174,9 @@ std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& t
   cv::Mat scores;
   for (int k = 0; k < rotations; ++k) {
     const double theta = 2.0 * M_PI * k / rotations;
+    if (!sweeps(theta, settings)) {
+      continue;
+    }
     const cv::Mat matrix = turn.matrix(theta);
     cv::warpAffine(coarse_from.occupied, turned_walls, matrix, canvas, cv::INTER_LINEAR);
     cv::warpAffine(coarse_from.free, turned_free, matrix, canvas, cv::INTER_LINEAR);

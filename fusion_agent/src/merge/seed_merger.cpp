@@ -131,12 +131,17 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
     lap(clock, timings_.fallback);
   }
   if ((candidates.empty() || !refusal(refined).empty()) && settings_.global_search) {
-    const std::vector<seed::Hypothesis> global =
-        seed::globalHypotheses(from, to, scorer, inputs, settings_);  // step 10
-    result.trials += static_cast<int>(global.size());
-    addCandidates(
-        seed::searchCandidates(global, settings_.global_candidates, inputs, tables_, settings_),
-        inputs, candidates, refined);
+    const std::vector<double> rotations =
+        searchGlobally(from, to, scorer, inputs, settings_, seed::Stage::kGlobalSearch, candidates,
+                       refined, result);  // step 10
+    if ((candidates.empty() || !refusal(refined).empty()) && settings_.global_fine_cells > 0 &&
+        !rotations.empty()) {
+      SeedMergerSettings fine = settings_;  // step 10 again on a finer grid near its rotations
+      fine.global.coarse_cells = settings_.global_fine_cells;
+      fine.global.only_rotations_rad = rotations;
+      searchGlobally(from, to, scorer, inputs, fine, seed::Stage::kFineGlobalSearch, candidates,
+                     refined, result);
+    }
     lap(clock, timings_.global);
   }
 
@@ -155,6 +160,25 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
   judge(refined, from, to, result);  // block 9
   lap(clock, timings_.verification);
   return result;
+}
+
+std::vector<double> SeedMerger::searchGlobally(
+    const GridMap& from, const GridMap& to, const seed::CoarseScorer& scorer,
+    const seed::SearchInputs& inputs, const SeedMergerSettings& settings, seed::Stage stage,
+    std::vector<seed::Candidate>& candidates, seed::Refined& refined, MergeResult& result) const {
+  std::vector<seed::Hypothesis> global = seed::globalHypotheses(from, to, scorer, inputs, settings);
+  for (seed::Hypothesis& hypothesis : global) {
+    hypothesis.stage = stage;
+  }
+  result.trials += static_cast<int>(global.size());
+  addCandidates(
+      seed::searchCandidates(global, settings.global_candidates, inputs, tables_, settings_),
+      inputs, candidates, refined);
+  std::vector<double> rotations;
+  for (const seed::Hypothesis& hypothesis : global) {
+    rotations.push_back(hypothesis.T_to_from.theta_rad);
+  }
+  return rotations;
 }
 
 void SeedMerger::addCandidates(const std::vector<seed::Candidate>& more,
@@ -212,16 +236,38 @@ void SeedMerger::judge(const seed::Refined& refined, const GridMap& from, const 
   result.accepted = result.reason.empty();
 }
 
+bool SeedMerger::smallOverlapDecisive(const seed::Refined& refined) const {
+  // Every overlapping wall meets a wall both ways and no other transform explains the overlap.
+  const long long overlap = refined.full.agreement + refined.full.disagreement;
+  return settings_.small_overlap_cells > 0 && overlap >= settings_.small_overlap_cells &&
+         refined.structure >= settings_.small_overlap_structure && refined.rival_share <= 0.0;
+}
+
+bool SeedMerger::translationFixed(const seed::Refined& refined) const {
+  if (refined.translation_ambiguity <= settings_.max_translation_ambiguity) {
+    return true;
+  }
+  // Walls that clearly pin the shift outweigh open floor that slides along a corridor.
+  return refined.wall_ambiguity <= settings_.decisive_wall_ambiguity &&
+         refined.similarity_ambiguity <= settings_.max_open_floor_ambiguity;
+}
+
 std::string SeedMerger::refusal(const seed::Refined& refined) const {
   const long long overlap = refined.full.agreement + refined.full.disagreement;
   const double verification = verificationIndex(refined.full);
-  if (overlap < settings_.min_overlap_cells) {
+  if (overlap < settings_.min_overlap_cells && !smallOverlapDecisive(refined)) {
     return "overlap of " + std::to_string(overlap) + " known cells is below " +
            std::to_string(settings_.min_overlap_cells);
   }
   if (verification < settings_.min_verification_v) {
     return "verification index " + describe(verification) + " is below " +
            describe(settings_.min_verification_v);
+  }
+  if (refined.stage == seed::Stage::kFineGlobalSearch &&
+      verification < settings_.global_fine_min_verification) {
+    return "verification index " + describe(verification) +
+           " of a finer sweep's transform is below " +
+           describe(settings_.global_fine_min_verification);
   }
   if (refined.structure < settings_.min_structure_agreement) {
     return "only " + describe(refined.structure) + " of the overlapping walls meet walls (below " +
@@ -231,7 +277,7 @@ std::string SeedMerger::refusal(const seed::Refined& refined) const {
     return "the entropy minimum lies " + describe(refined.entropy_gap_cells) +
            " cells from the best similarity";
   }
-  if (refined.translation_ambiguity > settings_.max_translation_ambiguity) {
+  if (!translationFixed(refined)) {
     return "the overlap does not fix the translation: a shift of " +
            std::to_string(kRunnerUpCells) + " cells or more scores " +
            describe(refined.translation_ambiguity) + " of the best";

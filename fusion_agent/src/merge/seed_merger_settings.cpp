@@ -100,6 +100,10 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       section.getDouble("min_verification_v", settings.min_verification_v, {0.0, 1.0});
   settings.min_overlap_cells =
       section.getInt("min_overlap_cells", settings.min_overlap_cells, {0.0, 1e9});
+  settings.small_overlap_cells =
+      section.getInt("small_overlap_cells", settings.small_overlap_cells, {0.0, 1e9});
+  settings.small_overlap_structure =
+      section.getDouble("small_overlap_structure", settings.small_overlap_structure, {0.0, 1.0});
   settings.min_structure_agreement =
       section.getDouble("min_structure_agreement", settings.min_structure_agreement, {0.0, 1.0});
   settings.entropy_agreement_cells =
@@ -112,6 +116,11 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       static_cast<int>(section.getInt("judged_candidates", settings.judged_candidates, {1, 100}));
   settings.wall_anchor = section.getBool("wall_anchor", settings.wall_anchor);
   settings.wall_ranking = section.getBool("wall_ranking", settings.wall_ranking);
+  settings.rank_by_overlap = section.getBool("rank_by_overlap", settings.rank_by_overlap);
+  settings.decisive_wall_ambiguity =
+      section.getDouble("decisive_wall_ambiguity", settings.decisive_wall_ambiguity, {0.0, 1.0});
+  settings.max_open_floor_ambiguity =
+      section.getDouble("max_open_floor_ambiguity", settings.max_open_floor_ambiguity, {0.0, 1.0});
   settings.wall_icp_iterations = static_cast<int>(
       section.getInt("wall_icp_iterations", settings.wall_icp_iterations, {0, 1000}));
   settings.wall_icp_distance_cells =
@@ -127,6 +136,10 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
 
 void readGlobalSearchSettings(const Config& section, SeedMergerSettings& settings) {
   settings.global_search = section.getBool("global_search", settings.global_search);
+  settings.global_fine_cells =
+      readInt(section, "global_fine_cells", settings.global_fine_cells, {0, 64});
+  settings.global_fine_min_verification = section.getDouble(
+      "global_fine_min_verification", settings.global_fine_min_verification, {0.0, 1.0});
   settings.global.coarse_cells =
       readInt(section, "global_coarse_cells", settings.global.coarse_cells, {1, 64});
   settings.global.rotation_step_rad =

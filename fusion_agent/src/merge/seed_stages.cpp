@@ -230,16 +230,31 @@ double twoWayStructure(const GridTransform& T_to_from, const SearchInputs& input
       structureAgreement(inputs.occupied_to, inputs.from, T_to_from.inverse(), tables).index());
 }
 
+// Whether a candidate can pass block 9's structure bar and (with `rank_by_overlap`) its overlap
+// bar: a transform that overlaps only a few walls would be refused for its overlap anyway.
+bool meetsBars(const Candidate& candidate, const SeedMergerSettings& settings) {
+  return candidate.structure >= settings.min_structure_agreement &&
+         (!settings.rank_by_overlap ||
+          candidate.overlap_cells >= static_cast<double>(settings.min_overlap_cells));
+}
+
 void orderCandidates(std::vector<Candidate>& candidates, const SeedMergerSettings& settings) {
   std::stable_sort(candidates.begin(), candidates.end(),
                    [&](const Candidate& a, const Candidate& b) {
-                     const bool a_meets = a.structure >= settings.min_structure_agreement;
-                     const bool b_meets = b.structure >= settings.min_structure_agreement;
+                     const bool a_meets = meetsBars(a, settings);
+                     const bool b_meets = meetsBars(b, settings);
                      if (a_meets != b_meets) {
                        return a_meets;
                      }
                      return settings.wall_ranking ? a.walls > b.walls : a.similarity > b.similarity;
                    });
+}
+
+// Known cells in the overlap at T_to_from (agr + dis over all of `from`'s known cells).
+double overlapCells(const GridTransform& T_to_from, const SearchInputs& inputs,
+                    const ComparisonTables& tables) {
+  const Agreement all = compareAt(inputs.all_samples, inputs.to, T_to_from, tables, false);
+  return static_cast<double>(all.agreement + all.disagreement);
 }
 
 // The best shift within ±1 cell and its agr - dis.
@@ -283,6 +298,8 @@ const char* stageName(Stage stage) {
       return "seed/radon-fallback";
     case Stage::kGlobalSearch:
       return "seed/global-search";
+    case Stage::kFineGlobalSearch:
+      return "seed/global-search-fine";
     case Stage::kSegments:
       break;
   }
@@ -294,7 +311,7 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
                                         const SeedMergerSettings& settings) {
   std::vector<Candidate> candidates;
   for (const Hypothesis& hypothesis : bestDistinct(hypotheses, count)) {
-    Candidate candidate{hypothesis.T_to_from, hypothesis.stage, 0, 0.0, 0};
+    Candidate candidate{hypothesis.T_to_from, hypothesis.stage, 0, 0.0, 0, 0.0};
     if (settings.wall_ranking) {
       const WallSearch walls =
           anchorOnWalls(hypothesis.T_to_from, settings.translation_window_delta, inputs, tables);
@@ -308,6 +325,7 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
       candidate.similarity = search.at_best_similarity.similarity();
     }
     candidate.structure = twoWayStructure(candidate.T_to_from, inputs, tables);
+    candidate.overlap_cells = overlapCells(candidate.T_to_from, inputs, tables);
     candidates.push_back(candidate);
   }
   orderCandidates(candidates, settings);
@@ -336,7 +354,7 @@ double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& 
   const Eigen::Vector2d centre = chosen.T_to_from.apply(inputs.pivot_from);
   for (std::size_t i = 1; i < candidates.size(); ++i) {
     const Candidate& other = candidates[i];
-    if (other.structure >= settings.min_structure_agreement &&
+    if (meetsBars(other, settings) &&
         (other.T_to_from.apply(inputs.pivot_from) - centre).norm() > kRivalCells) {
       const long long best = fullSimilarity(chosen.T_to_from, inputs, tables);
       const double by_similarity =

@@ -43,9 +43,9 @@ std::vector<PairCandidate> rankPairs(const PreparedMap& from, const PreparedMap&
                                      const SeedMergerSettings& settings);
 
 /// The step of the pipeline that proposed a transform (MergeResult::method names it).
-enum class Stage { kSegments, kRadonFallback, kGlobalSearch };
+enum class Stage { kSegments, kRadonFallback, kGlobalSearch, kFineGlobalSearch };
 
-/// "seed", "seed/radon-fallback" or "seed/global-search".
+/// "seed", "seed/radon-fallback", "seed/global-search" or "seed/global-search-fine".
 const char* stageName(Stage stage);
 
 /// A candidate transform and its coarse score.
@@ -97,14 +97,15 @@ TranslationSearch searchAround(const GridTransform& T_to_from, const SearchInput
 struct Candidate {
   GridTransform T_to_from;
   Stage stage = Stage::kSegments;
-  long long similarity = 0;  ///< agr - dis on the search samples
-  double structure = 0.0;    ///< the lesser structure agreement of both directions (samples)
-  long long walls = 0;       ///< wallBalance() (ranks the candidates with `wall_ranking`)
+  long long similarity = 0;    ///< agr - dis on the search samples
+  double structure = 0.0;      ///< the lesser structure agreement of both directions (samples)
+  long long walls = 0;         ///< wallBalance() (ranks the candidates with `wall_ranking`)
+  double overlap_cells = 0.0;  ///< known cells in the overlap (agr + dis, all cells)
 };
 
 /// Block 8 on the `count` best distinct hypotheses; candidates ordered best first: those whose
-/// walls meet walls (structure ≥ min_structure_agreement) before the others, each group by
-/// similarity.
+/// walls meet walls (structure ≥ min_structure_agreement) and whose overlap reaches
+/// min_overlap_cells (with `rank_by_overlap`) before the others, each group by similarity.
 std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypotheses, int count,
                                         const SearchInputs& inputs, const ComparisonTables& tables,
                                         const SeedMergerSettings& settings);
@@ -131,6 +132,8 @@ struct Refined {
   double structure = 0.0;          ///< the lesser structure agreement of the two directions
   double entropy_gap_cells = 0.0;
   double translation_ambiguity = 1.0;  ///< runner-up / best agr - dis within ±δ
+  double wall_ambiguity = 1.0;         ///< the wall balance's runner-up share (wall_anchor)
+  double similarity_ambiguity = 1.0;   ///< agr - dis's runner-up share (wall_anchor)
   double rival_share = 0.0;            ///< rivalShare() of the candidates
 };
 

@@ -91,14 +91,15 @@ Refined settleOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs
   const WallSearch walls = anchorOnWalls(refined.T_to_from, reach, inputs, tables);
   coarse =
       searchTranslation(inputs.coarse_samples, inputs.to, refined.T_to_from, reach, tables, true);
-  // Either measure may be flat along a corridor: the translation is judged by the flatter.
+  // Either measure may be flat along a corridor: the translation is judged by the flatter (the
+  // merger lets decisive walls outweigh open floor, SeedMerger::translationFixed).
   const long long best = coarse.at_best_similarity.similarity();
-  refined.translation_ambiguity = std::max(
-      walls.best_balance > 0
-          ? static_cast<double>(walls.runner_up_balance) / static_cast<double>(walls.best_balance)
-          : 1.0,
-      best > 0 ? static_cast<double>(coarse.runner_up_similarity) / static_cast<double>(best)
-               : 1.0);
+  refined.wall_ambiguity = walls.best_balance > 0 ? static_cast<double>(walls.runner_up_balance) /
+                                                        static_cast<double>(walls.best_balance)
+                                                  : 1.0;
+  refined.similarity_ambiguity =
+      best > 0 ? static_cast<double>(coarse.runner_up_similarity) / static_cast<double>(best) : 1.0;
+  refined.translation_ambiguity = std::max(refined.wall_ambiguity, refined.similarity_ambiguity);
   return refined;
 }
 

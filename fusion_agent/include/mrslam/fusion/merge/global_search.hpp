@@ -7,8 +7,9 @@
 // 1. Both maps are coarsened by `coarse_cells` (a coarse cell is occupied when it holds an
 //    occupied cell, free when it holds known free cells only). `to` becomes the target
 //    W_to = O_to - w F_to (w = `free_weight`).
-// 2. For every rotation θ_k = k · `rotation_step` over the full turn, `from`'s coarse occupied and
-//    free images are turned (bilinear) onto a canvas, O_from(θ) and F_from(θ).
+// 2. For every rotation θ_k = k · `rotation_step` over the full turn (or only those within one
+//    step of `only_rotations`, for a finer second sweep around the first's answers), `from`'s
+//    coarse occupied and free images are turned (bilinear) onto a canvas, O_from(θ) and F_from(θ).
 // 3. The score of every translation at once, by DFT:
 //      s(t) = Σ_u O_from(θ)(u) W_to(u + t) - w Σ_u F_from(θ)(u) O_to(u + t),
 //    walls on walls count, walls of either map on the other's known free space cost w.
@@ -33,6 +34,8 @@ struct GlobalSearchSettings {
   int kept_hypotheses = 12;                       ///< best peaks over all rotations returned
   double free_weight = 0.5;                       ///< w: cost of a wall on the other's free space
   int peak_separation = 2;                        ///< coarse cells between two peaks of a rotation
+  std::vector<double>
+      only_rotations_rad;  ///< when not empty: the sweep's rotations near these only
 };
 
 /// A coarse transform and its correlation score s(t).

@@ -56,7 +56,16 @@
 // 10. Global search (ours, `global_search`): when step 9 still refuses, every rotation of a full
 //    turn is correlated over all translations on coarse grids (global_search.hpp); the best
 //    coarse transforms, refined at full resolution (seed_global.cpp), join the candidates of
-//    steps 6-8 as well. MergeResult::method names the step whose candidate is returned.
+//    steps 6-8 as well. When still refused, a second sweep on a finer grid (`global_fine_cells`)
+//    turns only within one rotation step of the first's hypotheses; its transforms must also
+//    reach V ≥ `global_fine_min_verification` (a finer grid also finds near misses of distorted
+//    maps). MergeResult::method names the step whose candidate is returned.
+// Acceptance (ours): with `rank_by_overlap`, candidates whose overlap is below
+// `min_overlap_cells` rank after the others and are no rival. The translation also counts as
+// fixed when the wall balance's runner-up share is at most `decisive_wall_ambiguity` and agr -
+// dis's at most `max_open_floor_ambiguity` (open floor slides along a corridor, walls do not).
+// An overlap of `small_overlap_cells` suffices when the structure agreement is at least
+// `small_overlap_structure` and no rival exists.
 // Randomness comes from `seed` only: one merge of the same maps always gives the same answer.
 // Choices where the description is silent: D is the distance to the segment's total-least-
 // squares line and Δ the turning angle over chords of k points; the arc histogram is that of Δ;
@@ -82,6 +91,8 @@
 namespace mrslam::fusion {
 
 namespace seed {
+enum class Stage;
+class CoarseScorer;
 struct Candidate;
 struct Refined;
 struct SearchInputs;
@@ -105,17 +116,22 @@ struct SeedMergerSettings {
   int translation_window_delta = 6;  ///< δ: translation search ±δ cells
   double rotation_polish_rad = 1.5 * M_PI / 180.0;       ///< polish: rotations tried ± this
   double rotation_polish_step_rad = 0.5 * M_PI / 180.0;  ///< polish: first step (then half)
-  int search_occupied_samples = 2500;       ///< ±δ search: occupied cells of `from` sampled
-  int search_free_samples = 2500;           ///< ±δ search: free cells of `from` sampled
-  double min_verification_v = 0.9;          ///< V threshold: least agr / (agr + dis)
-  long long min_overlap_cells = 1500;       ///< least known cells in the overlap (agr + dis)
-  double min_structure_agreement = 0.85;    ///< least share of walls landing on walls
-  double entropy_agreement_cells = 1.5;     ///< largest gap best-similarity ↔ least-entropy
+  int search_occupied_samples = 2500;   ///< ±δ search: occupied cells of `from` sampled
+  int search_free_samples = 2500;       ///< ±δ search: free cells of `from` sampled
+  double min_verification_v = 0.9;      ///< V threshold: least agr / (agr + dis)
+  long long min_overlap_cells = 1500;   ///< least known cells in the overlap (agr + dis)
+  long long small_overlap_cells = 900;  ///< least overlap when walls all meet and no rival (0: off)
+  double small_overlap_structure = 0.99;  ///< structure agreement that lets small_overlap_cells do
+  double min_structure_agreement = 0.85;  ///< least share of walls landing on walls
+  double entropy_agreement_cells = 1.5;   ///< largest gap best-similarity ↔ least-entropy
   double max_translation_ambiguity = 0.95;  ///< largest runner-up / best agr - dis in ±δ
+  double decisive_wall_ambiguity = 0.85;    ///< walls fix the shift: wall runner-up share ≤ this
+  double max_open_floor_ambiguity = 0.975;  ///< agr - dis runner-up bar when walls fix the shift
   double max_rival_share = 0.93;            ///< largest agr - dis of a rival transform / best
   int judged_candidates = 3;                ///< candidates judged in turn when the best is refused
   bool wall_anchor = true;       ///< step 7: translation by walls near walls before agr - dis
   bool wall_ranking = true;      ///< candidates placed and ranked by walls, rivals judged by both
+  bool rank_by_overlap = true;   ///< candidates whose overlap is below min_overlap_cells rank last
   int wall_icp_iterations = 30;  ///< final refinement: ICP of walls onto walls (0: off)
   double wall_icp_distance_cells = 3.0;  ///< final refinement: farthest wall matched
   bool radon_fallback = true;            ///< try global Radon rotations when segments fail
@@ -125,7 +141,9 @@ struct SeedMergerSettings {
   GlobalSearchSettings global;           ///< step 10 (global_search.hpp)
   double global_polish_step_rad = 0.5 * M_PI / 180.0;  ///< step 10: rotation step of the refinement
   int global_candidates = 6;  ///< step 10: refined hypotheses given the ±δ search
-  std::uint32_t seed = 1;     ///< seed of the random segment starts
+  int global_fine_cells = 2;  ///< finer sweep near step 10's rotations: coarse cells (0: off)
+  double global_fine_min_verification = 0.96;  ///< least V of a transform of the finer sweep
+  std::uint32_t seed = 1;                      ///< seed of the random segment starts
 };
 
 /// Reads a `seed_merger` config section (every key optional, defaults above); angles in
@@ -157,6 +175,14 @@ class SeedMerger : public MapMerger {
   /// Adds `more` to the ordered `candidates`; `refined` follows a new best and the rival share.
   void addCandidates(const std::vector<seed::Candidate>& more, const seed::SearchInputs& inputs,
                      std::vector<seed::Candidate>& candidates, seed::Refined& refined) const;
+  /// Step 10 with `settings`' global search: its refined hypotheses join the candidates; returns
+  /// their rotations.
+  std::vector<double> searchGlobally(const GridMap& from, const GridMap& to,
+                                     const seed::CoarseScorer& scorer,
+                                     const seed::SearchInputs& inputs,
+                                     const SeedMergerSettings& settings, seed::Stage stage,
+                                     std::vector<seed::Candidate>& candidates,
+                                     seed::Refined& refined, MergeResult& result) const;
   /// The first of the next `judged_candidates` - 1 candidates that passes block 9, refined.
   std::optional<seed::Refined> nextAcceptable(const std::vector<seed::Candidate>& candidates,
                                               const seed::SearchInputs& inputs) const;
@@ -168,6 +194,10 @@ class SeedMerger : public MapMerger {
              MergeResult& result) const;
   /// Why a refined transform is refused; empty when it is accepted.
   std::string refusal(const seed::Refined& refined) const;
+  /// Whether an overlap below min_overlap_cells is still decisive (small_overlap_* bars).
+  bool smallOverlapDecisive(const seed::Refined& refined) const;
+  /// Whether the overlap fixes the translation (the ambiguity bars of block 9).
+  bool translationFixed(const seed::Refined& refined) const;
   seed::SearchInputs searchInputs(const GridMap& from, const GridMap& to) const;
 
   const SeedMergerSettings settings_;
