@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <thread>
 
 namespace mrslam::fusion {
@@ -151,7 +152,14 @@ void FusionLoop::checkRendezvous() {
     pending_rendezvous_.erase(pending_rendezvous_.begin(),
                               pending_rendezvous_.end() - kMaxPendingRendezvous);
   }
-  if (pending_rendezvous_.empty()) {
+  // A hypothesis is checked again only when the maps changed since its last check: the loop
+  // runs every 50 ms, and a snapshot copies every robot's map.
+  const std::uint64_t version = store_.version();
+  const bool any_due = std::any_of(pending_rendezvous_.begin(), pending_rendezvous_.end(),
+                                   [version](const PendingRendezvous& pending) {
+                                     return pending.checked_at_version != version;
+                                   });
+  if (!any_due) {
     return;
   }
   const std::vector<RobotMap> maps = store_.snapshot();
@@ -159,11 +167,11 @@ void FusionLoop::checkRendezvous() {
   for (PendingRendezvous& pending : pending_rendezvous_) {
     const RobotMap* from = mapOf(maps, pending.hypothesis.from);
     const RobotMap* to = mapOf(maps, pending.hypothesis.to);
-    if (from == nullptr || to == nullptr || pending.checked_at_version == store_.version()) {
+    if (from == nullptr || to == nullptr || pending.checked_at_version == version) {
       still_pending.push_back(pending);  // wait for both maps, or for either to change
       continue;
     }
-    pending.checked_at_version = store_.version();
+    pending.checked_at_version = version;
     const auto started = Clock::now();
     const RendezvousCheck check =
         fusion::checkRendezvous(pending.hypothesis, from->map, to->map, config_.rendezvous);

@@ -95,21 +95,22 @@ PoseGraphResult optimisePoseGraph(const std::map<std::string, SE2>& initial,
       const SE2& T_to = result.T_reference_robot.at(edge.to);
       const Eigen::Vector3d e = edgeError(edge, T_from, T_to);
       const Eigen::Matrix3d omega = informationOf(edge);
-      const std::pair<const std::string*, bool> ends[] = {{&edge.from, true}, {&edge.to, false}};
-      for (const auto& [robot_i, i_is_from] : ends) {
-        const auto bi = block.find(*robot_i);
-        if (bi == block.end()) {
-          continue;
+      // The edge's two ends: each free one's block and its Jacobian, computed once.
+      struct End {
+        int block;
+        Eigen::Matrix3d J;
+      };
+      std::vector<End> ends;
+      for (const bool of_from : {true, false}) {
+        const auto found = block.find(of_from ? edge.from : edge.to);
+        if (found != block.end()) {
+          ends.push_back({found->second, numericJacobian(edge, T_from, T_to, of_from)});
         }
-        const Eigen::Matrix3d Ji = numericJacobian(edge, T_from, T_to, i_is_from);
-        b.segment<3>(3 * bi->second) += Ji.transpose() * omega * e;
-        for (const auto& [robot_j, j_is_from] : ends) {
-          const auto bj = block.find(*robot_j);
-          if (bj == block.end()) {
-            continue;
-          }
-          const Eigen::Matrix3d Jj = numericJacobian(edge, T_from, T_to, j_is_from);
-          H.block<3, 3>(3 * bi->second, 3 * bj->second) += Ji.transpose() * omega * Jj;
+      }
+      for (const End& i : ends) {
+        b.segment<3>(3 * i.block) += i.J.transpose() * omega * e;
+        for (const End& j : ends) {
+          H.block<3, 3>(3 * i.block, 3 * j.block) += i.J.transpose() * omega * j.J;
         }
       }
     }

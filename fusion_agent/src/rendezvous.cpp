@@ -26,6 +26,7 @@ bool RendezvousBook::add(const Sighting& sighting) {
   }
   std::lock_guard<std::mutex> lock(mutex_);
   open_.push_back(sighting);
+  added_since_taken_ = true;
   if (open_.size() > settings_.max_kept) {
     open_.erase(open_.begin());
   }
@@ -39,6 +40,10 @@ std::size_t RendezvousBook::size() const {
 
 std::vector<RendezvousHypothesis> RendezvousBook::takeHypotheses() {
   std::lock_guard<std::mutex> lock(mutex_);
+  if (!added_since_taken_) {
+    return {};  // the open sightings were paired as far as they go at the last call
+  }
+  added_since_taken_ = false;
   // Every mutual pair within the time gap, closest in time first.
   struct Candidate {
     double gap_s;
@@ -101,7 +106,9 @@ RendezvousCheck checkRendezvous(const RendezvousHypothesis& hypothesis, const Gr
   }
   const GridTransform measured =
       metricToGridTransform(hypothesis.T_to_from, from.geometry, to.geometry);
-  const RendezvousFit fit = fitRendezvous(from, to, measured, settings);
+  const LocalFit fit =
+      fitNear(from, to, measured,
+              {settings.max_refinement_m, settings.max_refinement_rad, settings.rotation_step_rad});
   check.T_to_from = gridTransformToMetric(fit.T_to_from, from.geometry, to.geometry);
   check.verification = fit.verification;
   check.structure = fit.structure;

@@ -72,7 +72,7 @@ PoseGraphEdge poseGraphEdge(const PairwiseEstimate& estimate, const PlacementWei
 
 }  // namespace
 
-std::map<std::string, SE2> TeamGraph::leastSquares(
+std::optional<std::map<std::string, SE2>> TeamGraph::leastSquares(
     const std::string& reference, const std::map<std::string, SE2>& initial,
     const std::vector<PairwiseEstimate>& kept) const {
   std::vector<PoseGraphEdge> edges;
@@ -83,7 +83,7 @@ std::map<std::string, SE2> TeamGraph::leastSquares(
   }
   // A spanning tree has one edge fewer than robots: only more than that makes a loop.
   if (edges.size() + 1 <= initial.size()) {
-    return initial;
+    return std::nullopt;
   }
   return optimisePoseGraph(initial, edges, {reference}).T_reference_robot;
 }
@@ -241,13 +241,8 @@ std::vector<Placement> TeamGraph::place(const std::string& reference,
       initial[entry.first] = entry.second.T_reference_robot;
     }
   }
-  const std::map<std::string, SE2> adjusted = leastSquares(reference, initial, kept);
-  const bool has_loops = std::count_if(kept.begin(), kept.end(),
-                                       [&](const PairwiseEstimate& e) {
-                                         return initial.count(e.from) && initial.count(e.to);
-                                       }) +
-                             1 >
-                         static_cast<std::ptrdiff_t>(initial.size());
+  // With loops, every placed robot's pose is the least-squares one; else its path's.
+  const std::optional<std::map<std::string, SE2>> adjusted = leastSquares(reference, initial, kept);
   std::vector<Placement> placements;
   for (const std::string& robot : robots) {
     Placement placement;
@@ -258,8 +253,9 @@ std::vector<Placement> TeamGraph::place(const std::string& reference,
       placement.source = "reference";
     } else if (found != reached.end() && std::isfinite(found->second.cost)) {
       placement.placed = true;
-      placement.T_reference_robot = adjusted.at(robot);
-      placement.least_squares = has_loops && found->second.through_estimates;
+      placement.T_reference_robot =
+          adjusted ? adjusted->at(robot) : found->second.T_reference_robot;
+      placement.least_squares = adjusted.has_value() && found->second.through_estimates;
       if (found->second.through_estimates) {
         placement.verification = found->second.weakest_verification;
         placement.methods = found->second.methods;

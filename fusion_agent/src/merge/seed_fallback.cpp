@@ -112,21 +112,6 @@ std::vector<cv::Point> strongestShifts(cv::Mat correlation, int count) {
   return shifts;
 }
 
-Hypothesis bestNearby(const GridTransform& coarse, const CoarseScorer& scorer) {
-  Hypothesis best{coarse, -2.0, Stage::kRadonFallback};
-  for (int dy = -kCoarse; dy <= kCoarse; dy += 2) {
-    for (int dx = -kCoarse; dx <= kCoarse; dx += 2) {
-      GridTransform candidate = coarse;
-      candidate.t_cells += Eigen::Vector2d(dx, dy);
-      const double score = scorer.score(candidate);
-      if (score > best.coarse_score) {
-        best = {candidate, score, Stage::kRadonFallback};
-      }
-    }
-  }
-  return best;
-}
-
 }  // namespace
 
 std::vector<Hypothesis> fallbackHypotheses(const PreparedMap& from, const PreparedMap& to,
@@ -150,7 +135,7 @@ std::vector<Hypothesis> fallbackHypotheses(const PreparedMap& from, const Prepar
         GridTransform coarse;
         coarse.theta_rad = std::remainder(theta, 2.0 * M_PI);
         coarse.t_cells = kCoarse * Eigen::Vector2d(shift.x, shift.y) - corner;
-        hypotheses.push_back(bestNearby(coarse, scorer));
+        hypotheses.push_back(bestShift(coarse, kCoarse, 2, scorer, Stage::kRadonFallback));
       }
     }
   }

@@ -16,23 +16,6 @@ namespace mrslam::fusion::seed {
 
 namespace {
 
-// The best coarse score among the shifts within ±reach (in `step`s) of T_to_from.
-Hypothesis bestShift(const GridTransform& T_to_from, int reach, int step,
-                     const CoarseScorer& scorer) {
-  Hypothesis best{T_to_from, -2.0, Stage::kGlobalSearch};
-  for (int dy = -reach; dy <= reach; dy += step) {
-    for (int dx = -reach; dx <= reach; dx += step) {
-      GridTransform shifted = T_to_from;
-      shifted.t_cells += Eigen::Vector2d(dx, dy);
-      const double score = scorer.score(shifted);
-      if (score > best.coarse_score) {
-        best = {shifted, score, Stage::kGlobalSearch};
-      }
-    }
-  }
-  return best;
-}
-
 Hypothesis refineCoarse(const GridTransform& coarse, const CoarseScorer& scorer,
                         const SearchInputs& inputs, const SeedMergerSettings& settings) {
   const double step = settings.global_polish_step_rad;
@@ -43,12 +26,13 @@ Hypothesis refineCoarse(const GridTransform& coarse, const CoarseScorer& scorer,
     GridTransform turned;
     turned.theta_rad = coarse.theta_rad + i * step;
     turned.t_cells = translationFromCentroids(turned.theta_rad, inputs.pivot_from, placed_pivot);
-    const Hypothesis at_turn = bestShift(turned, settings.global.coarse_cells, 2, scorer);
+    const Hypothesis at_turn =
+        bestShift(turned, settings.global.coarse_cells, 2, scorer, Stage::kGlobalSearch);
     if (at_turn.coarse_score > best.coarse_score) {
       best = at_turn;
     }
   }
-  const Hypothesis fine = bestShift(best.T_to_from, 1, 1, scorer);
+  const Hypothesis fine = bestShift(best.T_to_from, 1, 1, scorer, Stage::kGlobalSearch);
   return fine.coarse_score > best.coarse_score ? fine : best;
 }
 

@@ -161,6 +161,22 @@ double CoarseScorer::score(const GridTransform& T_to_from) const {
   return static_cast<double>(balance) / static_cast<double>(samples_.size());
 }
 
+Hypothesis bestShift(const GridTransform& T_to_from, int reach, int step,
+                     const CoarseScorer& scorer, Stage stage) {
+  Hypothesis best{T_to_from, -2.0, stage};
+  for (int dy = -reach; dy <= reach; dy += step) {
+    for (int dx = -reach; dx <= reach; dx += step) {
+      GridTransform shifted = T_to_from;
+      shifted.t_cells += Eigen::Vector2d(dx, dy);
+      const double score = scorer.score(shifted);
+      if (score > best.coarse_score) {
+        best = {shifted, score, stage};
+      }
+    }
+  }
+  return best;
+}
+
 std::vector<Hypothesis> poseHypotheses(const std::vector<PairCandidate>& pairs,
                                        const PreparedMap& from, const PreparedMap& to,
                                        const std::vector<double>& radon_correlation,

@@ -66,6 +66,11 @@ class CoarseScorer {
   cv::Mat classes_;                 // of `to`: 2 near occupied, 1 free, 0 unknown
 };
 
+/// The best coarse score among the shifts of T_to_from within ±reach cells, every `step` cells
+/// (T_to_from itself when nothing scores above -2), labelled with `stage`.
+Hypothesis bestShift(const GridTransform& T_to_from, int reach, int step,
+                     const CoarseScorer& scorer, Stage stage);
+
 /// Blocks 6-7 for the ranked pairs: tuned, scored hypotheses (unsorted).
 std::vector<Hypothesis> poseHypotheses(const std::vector<PairCandidate>& pairs,
                                        const PreparedMap& from, const PreparedMap& to,

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "mrslam/fusion/merge/local_fit.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
 #include "mrslam/fusion/merge/virtual_robot.hpp"
-#include "mrslam/fusion/rendezvous.hpp"
 
 namespace mrslam::fusion {
 
@@ -19,8 +19,7 @@ constexpr double kPolishTurnRad = 0.6 * M_PI / 180.0;  ///< ... and turns
 constexpr double kPolishStepRad = 0.1 * M_PI / 180.0;  ///< ... in steps of this
 
 struct Judged {
-  RendezvousFit fit;
-  double similarity = 0.0;  ///< agr − dis = overlap · (2V − 1)
+  LocalFit fit;
   bool passes = false;
   std::string failure;
 };
@@ -32,13 +31,11 @@ bool distinct(const GridTransform& a, const GridTransform& b, const Eigen::Vecto
 
 Judged judge(const GridMap& from, const GridMap& to, const GridTransform& hypothesis,
              const VirtualRobotSettings& settings) {
-  RendezvousSettings fit_settings;
-  fit_settings.max_refinement_m = settings.fit_shift_m;
-  fit_settings.max_refinement_rad = settings.fit_turn_rad;
+  LocalFitSettings fit_settings;
+  fit_settings.max_shift_m = settings.fit_shift_m;
+  fit_settings.max_turn_rad = settings.fit_turn_rad;
   Judged judged;
-  judged.fit = fitRendezvous(from, to, hypothesis, fit_settings);
-  judged.similarity =
-      static_cast<double>(judged.fit.overlap_cells) * (2.0 * judged.fit.verification - 1.0);
+  judged.fit = fitNear(from, to, hypothesis, fit_settings);
   std::ostringstream failure;
   if (judged.fit.overlap_cells < settings.min_overlap_cells) {
     failure << "overlap " << judged.fit.overlap_cells << " cells < " << settings.min_overlap_cells;
@@ -53,31 +50,18 @@ Judged judge(const GridMap& from, const GridMap& to, const GridTransform& hypoth
   return judged;
 }
 
-/// T_to_from turned by `delta_rad` about the cell `pivot` of `from`.
-GridTransform turnedAbout(const GridTransform& T_to_from, const Eigen::Vector2d& pivot,
-                          double delta_rad) {
-  GridTransform turned = T_to_from;
-  turned.theta_rad += delta_rad;
-  turned.t_cells = T_to_from.apply(pivot) - (turned.apply(pivot) - turned.t_cells);
-  return turned;
-}
-
 /// A building of right angles fits itself turned by 90° or 180° nearly as well: the best
 /// hypothesis turned so about its overlap, each fitted within ±rotation_rival_shift_m, must
 /// score clearly less. Returns the largest such score as a share of the best's.
 double rotationRivalShare(const GridMap& from, const GridMap& to, const Judged& best,
                           const Eigen::Vector2d& pivot, const VirtualRobotSettings& settings) {
-  RendezvousSettings fit_settings;
-  fit_settings.max_refinement_m = settings.rotation_rival_shift_m;
-  fit_settings.max_refinement_rad = settings.fit_turn_rad;
-  fit_settings.rotation_step_rad = 0.5 * M_PI / 180.0;
+  const LocalFitSettings fit_settings{settings.rotation_rival_shift_m, settings.fit_turn_rad,
+                                      0.5 * M_PI / 180.0};
   double largest = 0.0;
   for (const double turn : {0.5 * M_PI, M_PI, -0.5 * M_PI}) {
-    const RendezvousFit rival =
-        fitRendezvous(from, to, turnedAbout(best.fit.T_to_from, pivot, turn), fit_settings);
-    const double similarity =
-        static_cast<double>(rival.overlap_cells) * (2.0 * rival.verification - 1.0);
-    largest = std::max(largest, similarity / best.similarity);
+    const LocalFit rival =
+        fitNear(from, to, turnedAbout(best.fit.T_to_from, pivot, turn), fit_settings);
+    largest = std::max(largest, rival.similarity() / best.fit.similarity());
   }
   return largest;
 }
@@ -139,7 +123,8 @@ MergeResult VirtualRobotMerger::merge(const GridMap& from, const GridMap& to) {
   }
   const auto best =
       std::max_element(judged.begin(), judged.end(), [](const Judged& a, const Judged& b) {
-        return (a.passes ? 1 : 0) != (b.passes ? 1 : 0) ? !a.passes : a.similarity < b.similarity;
+        return (a.passes ? 1 : 0) != (b.passes ? 1 : 0) ? !a.passes
+                                                        : a.fit.similarity() < b.fit.similarity();
       });
   result.verification = best->fit.verification;
   if (!best->passes) {
@@ -151,10 +136,10 @@ MergeResult VirtualRobotMerger::merge(const GridMap& from, const GridMap& to) {
   for (const Judged& other : judged) {
     if (&other != &*best && other.fit.structure >= settings_.min_structure_agreement &&
         distinct(other.fit.T_to_from, best->fit.T_to_from, pivot) &&
-        other.similarity >= settings_.max_rival_share * best->similarity) {
+        other.fit.similarity() >= settings_.max_rival_share * best->fit.similarity()) {
       std::ostringstream reason;
       reason << "virtual robot: ambiguous: a distinct hypothesis scores "
-             << other.similarity / best->similarity << " of the best";
+             << other.fit.similarity() / best->fit.similarity() << " of the best";
       result.reason = reason.str();
       return result;
     }
@@ -168,11 +153,8 @@ MergeResult VirtualRobotMerger::merge(const GridMap& from, const GridMap& to) {
     return result;
   }
   // A last, finer fit: the hypotheses' fit steps 0.25°.
-  RendezvousSettings polish;
-  polish.max_refinement_m = kPolishShiftM;
-  polish.max_refinement_rad = kPolishTurnRad;
-  polish.rotation_step_rad = kPolishStepRad;
-  const RendezvousFit polished = fitRendezvous(from, to, best->fit.T_to_from, polish);
+  const LocalFit polished =
+      fitNear(from, to, best->fit.T_to_from, {kPolishShiftM, kPolishTurnRad, kPolishStepRad});
   result.accepted = true;
   result.T_to_from = polished.T_to_from;
   result.verification = polished.verification;

@@ -6,31 +6,17 @@
 
 #include <cmath>
 
-#include "mrslam/common/map_loaders.hpp"
+#include "merge_crop_pairs.hpp"
 #include "mrslam/fusion/merge/global_search.hpp"
-#include "mrslam/fusion/merge/merge_cases.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
-#include "test_data.hpp"
 
 namespace mrslam::fusion {
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
 
-struct CropPair {
-  const char* map;
-  int case_id;
-  CropSpec a;
-  CropSpec b;
-};
-
-MergeCase cut(const CropPair& pair) {
-  const SourceMap source{pair.map, "one building",
-                         loadMapFile(test::sharedDataPath(std::string("maps/") + pair.map))};
-  MergeCase merge_case = makeCase(source, pair.a, source, pair.b);
-  merge_case.id = pair.case_id;
-  return merge_case;
-}
+using merge_test::CropPair;
+using merge_test::cut;
 
 void expectMergedWithinTwoCellsAndOneDegree(const CropPair& pair) {
   const MergeCase merge_case = cut(pair);

@@ -16,7 +16,7 @@
 #include "mrslam/common/grid_map.hpp"
 #include "mrslam/common/se2.hpp"
 #include "mrslam/common/stamp.hpp"
-#include "mrslam/fusion/merge/map_merger.hpp"
+#include "mrslam/fusion/merge/local_fit.hpp"
 
 namespace mrslam::fusion {
 
@@ -72,7 +72,8 @@ class RendezvousBook {
  private:
   RendezvousSettings settings_;
   mutable std::mutex mutex_;
-  std::vector<Sighting> open_;  ///< not yet paired
+  std::vector<Sighting> open_;      ///< not yet paired
+  bool added_since_taken_ = false;  ///< pairing is needed only after a new sighting
 };
 
 /// The result of checking a hypothesis against the maps.
@@ -85,22 +86,8 @@ struct RendezvousCheck {
   std::string reason;  ///< why it was refused
 };
 
-/// The best fit of the maps near a rendezvous (cells), with block 9's figures there.
-struct RendezvousFit {
-  GridTransform T_to_from;
-  double verification = 0.0;      ///< V over every known cell
-  double structure = 0.0;         ///< the lesser share of either map's walls meeting walls
-  std::size_t overlap_cells = 0;  ///< cells known in both
-};
-
-/// The largest agr − dis (the seed's similarity index, block 8) over turns within
-/// ±max_refinement_rad (about the centroid of `from`'s known cells) and shifts within
-/// ±max_refinement_m of `start`.
-RendezvousFit fitRendezvous(const GridMap& from, const GridMap& to, const GridTransform& start,
-                            const RendezvousSettings& settings);
-
-/// Fits the hypothesis to the maps (fitRendezvous) and accepts it when the overlap, V and the
-/// structure agreement are large enough there. A rendezvous that was wrong finds no such fit
+/// Fits the hypothesis to the maps (fitNear, local_fit.hpp) and accepts it when the overlap, V and
+/// the structure agreement are large enough there. A rendezvous that was wrong finds no such fit
 /// near it: it is refused, with the figure that failed.
 RendezvousCheck checkRendezvous(const RendezvousHypothesis& hypothesis, const GridMap& from,
                                 const GridMap& to, const RendezvousSettings& settings);

@@ -92,10 +92,10 @@ class TeamGraph {
   /// Splits the edges into those that agree with the loops they close and those that do not.
   std::vector<PairwiseEstimate> consistentEdges(std::vector<DroppedEdge>* dropped) const;
   /// The least-squares poses of the robots in `initial` over the kept edges between them (the
-  /// reference held fixed); `initial` itself when the edges form no loop.
-  std::map<std::string, SE2> leastSquares(const std::string& reference,
-                                          const std::map<std::string, SE2>& initial,
-                                          const std::vector<PairwiseEstimate>& kept) const;
+  /// reference held fixed); none when the edges form no loop (the paths' poses stand).
+  std::optional<std::map<std::string, SE2>> leastSquares(
+      const std::string& reference, const std::map<std::string, SE2>& initial,
+      const std::vector<PairwiseEstimate>& kept) const;
   LoopTolerance tolerance_;
   PlacementWeights weights_;
   using PairKey = std::pair<std::string, std::string>;  // ordered (smaller id first)

@@ -1,26 +1,17 @@
-// The local fit of a rendezvous hypothesis to the two maps (apart from rendezvous.cpp, whose
-// overlap score names its own cell classes).
+// The local fit of a transform to two maps (local_fit.hpp).
+
+#include "mrslam/fusion/merge/local_fit.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "mrslam/fusion/merge/similarity.hpp"
-#include "mrslam/fusion/rendezvous.hpp"
 
 namespace mrslam::fusion {
 
 namespace {
 
 constexpr int kSampledCellsPerClass = 2500;  ///< samples of each class for the search
-
-/// T_to_from turned by `delta_rad` about the cell `pivot` of `from` (the pivot stays put).
-GridTransform turnedAbout(const GridTransform& T_to_from, const Eigen::Vector2d& pivot,
-                          double delta_rad) {
-  GridTransform turned = T_to_from;
-  turned.theta_rad = T_to_from.theta_rad + delta_rad;
-  turned.t_cells = T_to_from.apply(pivot) - (turned.apply(pivot) - turned.t_cells);
-  return turned;
-}
 
 Eigen::Vector2d centroidOf(const std::vector<CellSample>& cells) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
@@ -40,23 +31,31 @@ std::vector<CellSample> occupiedOf(const std::vector<CellSample>& cells,
 
 }  // namespace
 
-RendezvousFit fitRendezvous(const GridMap& from, const GridMap& to, const GridTransform& start,
-                            const RendezvousSettings& settings) {
+GridTransform turnedAbout(const GridTransform& T_to_from, const Eigen::Vector2d& pivot,
+                          double delta_rad) {
+  GridTransform turned = T_to_from;
+  turned.theta_rad = T_to_from.theta_rad + delta_rad;
+  turned.t_cells = T_to_from.apply(pivot) - (turned.apply(pivot) - turned.t_cells);
+  return turned;
+}
+
+LocalFit fitNear(const GridMap& from, const GridMap& to, const GridTransform& start,
+                 const LocalFitSettings& settings) {
   const ComparisonTables tables{SimilaritySettings{}};
   const std::vector<CellSample> known_from = knownCells(from, tables);
   const std::vector<CellSample> known_to = knownCells(to, tables);
   const std::vector<CellSample> samples =
       sampleKnownCells(known_from, tables, kSampledCellsPerClass, kSampledCellsPerClass);
-  const int reach = std::max(
-      1, static_cast<int>(std::ceil(settings.max_refinement_m / to.geometry.resolution_m)));
+  const int reach =
+      std::max(1, static_cast<int>(std::ceil(settings.max_shift_m / to.geometry.resolution_m)));
   const CodeImage to_image = codeImage(to, reach + 2, tables);
   const Eigen::Vector2d pivot = centroidOf(samples);
-  // Block 8 at every turn within the refinement bound: the largest agr - dis wins.
-  RendezvousFit fit;
+  // Block 8 at every turn within the bound: the largest agr - dis wins.
+  LocalFit fit;
   long long best_similarity = 0;
   bool first = true;
-  const double step = std::max(settings.rotation_step_rad, 1e-4);
-  const int turns = static_cast<int>(std::floor(settings.max_refinement_rad / step));
+  const double step = std::max(settings.turn_step_rad, 1e-4);
+  const int turns = static_cast<int>(std::floor(settings.max_turn_rad / step));
   for (int k = -turns; k <= turns; ++k) {
     const GridTransform turned = turnedAbout(start, pivot, k * step);
     const TranslationSearch search = searchTranslation(samples, to_image, turned, reach, tables,
