@@ -162,6 +162,36 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
   return result;
 }
 
+MergeResult SeedMerger::judgeHypotheses(const GridMap& from, const GridMap& to,
+                                        const std::vector<GridTransform>& hypotheses) {
+  MergeResult result;
+  result.method = seed::stageName(seed::Stage::kGiven);
+  result.trials = static_cast<int>(hypotheses.size());
+  result.reason = inputRefusal(from, to);
+  if (!result.reason.empty()) {
+    return result;
+  }
+  if (hypotheses.empty()) {
+    result.reason = "no pose hypothesis given";
+    return result;
+  }
+  std::vector<seed::Hypothesis> given;  // the given order is kept where hypotheses repeat
+  for (const GridTransform& T_to_from : hypotheses) {
+    given.push_back({T_to_from, -static_cast<double>(given.size()), seed::Stage::kGiven});
+  }
+  const seed::SearchInputs inputs = searchInputs(from, to);
+  const std::vector<seed::Candidate> candidates =
+      seed::searchCandidates(given, static_cast<int>(given.size()), inputs, tables_, settings_);
+  seed::Refined refined = refineBest(candidates, inputs);
+  if (!refusal(refined).empty()) {
+    if (std::optional<seed::Refined> next = nextAcceptable(candidates, inputs)) {
+      refined = *next;
+    }
+  }
+  judge(refined, from, to, result);
+  return result;
+}
+
 std::vector<double> SeedMerger::searchGlobally(
     const GridMap& from, const GridMap& to, const seed::CoarseScorer& scorer,
     const seed::SearchInputs& inputs, const SeedMergerSettings& settings, seed::Stage stage,

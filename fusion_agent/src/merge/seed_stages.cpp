@@ -316,6 +316,8 @@ const char* stageName(Stage stage) {
       return "seed/global-search";
     case Stage::kFineGlobalSearch:
       return "seed/global-search-fine";
+    case Stage::kGiven:
+      return "seed/given";
     case Stage::kSegments:
       break;
   }

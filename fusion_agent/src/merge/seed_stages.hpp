@@ -43,9 +43,10 @@ std::vector<PairCandidate> rankPairs(const PreparedMap& from, const PreparedMap&
                                      const SeedMergerSettings& settings);
 
 /// The step of the pipeline that proposed a transform (MergeResult::method names it).
-enum class Stage { kSegments, kRadonFallback, kGlobalSearch, kFineGlobalSearch };
+enum class Stage { kSegments, kRadonFallback, kGlobalSearch, kFineGlobalSearch, kGiven };
 
-/// "seed", "seed/radon-fallback", "seed/global-search" or "seed/global-search-fine".
+/// "seed", "seed/radon-fallback", "seed/global-search", "seed/global-search-fine" or "seed/given"
+/// (hypotheses from another method, SeedMerger::judgeHypotheses).
 const char* stageName(Stage stage);
 
 /// A candidate transform and its coarse score.

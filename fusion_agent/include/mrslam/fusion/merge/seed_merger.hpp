@@ -170,6 +170,12 @@ class SeedMerger : public MapMerger {
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "seed"; }
   const SeedMergeTimings& lastTimings() const { return timings_; }
+  /// Blocks 8-9 on hypotheses found by another method (a virtual robot, a rendezvous, a wider
+  /// search): each is placed by the translation search within ±δ, they are ranked together and
+  /// the best is judged by the same acceptance as the seed's own candidates, every other given
+  /// hypothesis a rival. `method` of the result is "seed/given".
+  MergeResult judgeHypotheses(const GridMap& from, const GridMap& to,
+                              const std::vector<GridTransform>& hypotheses);
 
  private:
   /// Adds `more` to the ordered `candidates`; `refined` follows a new best and the rival share.
