@@ -105,10 +105,17 @@ void EkfEstimator::addScan(const LaserScan& scan, const OccupancyGrid&) {
     auto start = Clock::now();
     const PreparedScan prepared = matcher_.prepare(scan, beamMotion(scan));
     last_match_ = matcher_.match(prepared, pose());
+    // Both matches start from the prediction and are fused one after the other.
+    const std::optional<ScanMatch> newest = matcher_.matchNewestKeyframe(prepared, pose());
     last_correction_.reset();
     timings_.scan_matching_s += secondsSince(start);
     if (last_match_) {
       updateWithScanMatch(*last_match_);
+    }
+    if (newest) {
+      const std::optional<Correction> map_correction = last_correction_;
+      updateWithScanMatch(*newest);
+      last_correction_ = map_correction;  // lastScanCorrection() stays the local map's
     }
     start = Clock::now();
     if (matcher_.isKeyframe(pose())) {
@@ -125,7 +132,9 @@ void EkfEstimator::addScan(const LaserScan& scan, const OccupancyGrid&) {
 }
 
 void EkfEstimator::updateWithScanMatch(const ScanMatch& match) {
-  if (!match.icp.converged) {
+  const bool usable = match.icp.converged || (settings_.scan_matching.accept_unconverged &&
+                                              match.icp.status == IcpStatus::kNotConverged);
+  if (!usable) {
     ++counters_.scan_match_failures;
     return;
   }

@@ -41,6 +41,10 @@ IcpSettings loadIcp(const Config& section, IcpSettings icp) {
       section.getInt("min_inliers", static_cast<long long>(icp.min_inliers), {4, 1e6}));
   icp.min_inlier_fraction =
       section.getDouble("min_inlier_fraction", icp.min_inlier_fraction, {0.0, 1.0});
+  icp.prior_sigma_xy_m = section.getDouble("prior_sigma_xy_m", icp.prior_sigma_xy_m, {0.0, 100});
+  icp.prior_sigma_theta_rad =
+      section.getDouble("prior_sigma_theta_rad", icp.prior_sigma_theta_rad, {0.0, 10});
+  icp.residual_sigma_m = section.getDouble("residual_sigma_m", icp.residual_sigma_m, {1e-4, 10});
   return icp;
 }
 
@@ -79,6 +83,11 @@ ScanMatcherSettings loadScanMatching(const Config& section) {
   matching.min_sigma_xy_m = section.getDouble("min_sigma_xy_m", matching.min_sigma_xy_m, {0, 10});
   matching.min_sigma_theta_rad =
       section.getDouble("min_sigma_theta_rad", matching.min_sigma_theta_rad, {0, 10});
+  matching.accept_unconverged = section.getBool("accept_unconverged", matching.accept_unconverged);
+  matching.match_newest_keyframe =
+      section.getBool("match_newest_keyframe", matching.match_newest_keyframe);
+  matching.two_match_covariance_factor = section.getDouble(
+      "two_match_covariance_factor", matching.two_match_covariance_factor, {1.0, 100});
   return matching;
 }
 

@@ -45,11 +45,26 @@ NormalEquations accumulate(const IcpTarget& target, const std::vector<Eigen::Vec
   return eq;
 }
 
-// δ of eq. 3, with a tiny damping so a degenerate direction (a corridor) does not blow up.
-Eigen::Vector3d gaussNewtonStep(const NormalEquations& eq) {
+// Λ of eq. 3: the soft prior's information in the units of Σ w J Jᵀ (zero where σ = 0).
+Eigen::Vector3d priorInformation(const IcpSettings& settings) {
+  const auto information = [&settings](double sigma) {
+    return sigma > 0.0 ? (settings.residual_sigma_m * settings.residual_sigma_m) / (sigma * sigma)
+                       : 0.0;
+  };
+  const double xy = information(settings.prior_sigma_xy_m);
+  return Eigen::Vector3d(xy, xy, information(settings.prior_sigma_theta_rad));
+}
+
+// δ of eq. 3 at T with the prior Λ on T₀, with a tiny damping so a degenerate direction (a
+// corridor) does not blow up.
+Eigen::Vector3d gaussNewtonStep(const NormalEquations& eq, const Eigen::Vector3d& prior,
+                                const SE2& T, const SE2& T0) {
+  const Eigen::Vector3d from_guess(T.x() - T0.x(), T.y() - T0.y(),
+                                   wrapAngle(T.theta() - T0.theta()));
   const double damping = 1e-9 * std::max(eq.hessian.trace(), 1e-12);
-  const Eigen::Matrix3d damped = eq.hessian + damping * Eigen::Matrix3d::Identity();
-  return damped.ldlt().solve(-eq.gradient);
+  Eigen::Matrix3d damped = eq.hessian + damping * Eigen::Matrix3d::Identity();
+  damped.diagonal() += prior;
+  return damped.ldlt().solve(-eq.gradient - prior.cwiseProduct(from_guess));
 }
 
 // Inliers, RMS and the covariance of eq. 4 at the final estimate.
@@ -103,6 +118,7 @@ IcpResult alignPointToLine(const IcpTarget& target, const std::vector<Eigen::Vec
     result.status = IcpStatus::kTooFewPoints;
     return result;
   }
+  const Eigen::Vector3d prior = priorInformation(settings);
   double gate = settings.max_correspondence_m;
   result.status = IcpStatus::kNotConverged;
   Eigen::Vector3d previous_step = Eigen::Vector3d::Zero();
@@ -115,7 +131,8 @@ IcpResult alignPointToLine(const IcpTarget& target, const std::vector<Eigen::Vec
       result.status = IcpStatus::kTooFewInliers;
       return result;
     }
-    const Eigen::Vector3d full_step = gaussNewtonStep(eq);
+    const Eigen::Vector3d full_step =
+        gaussNewtonStep(eq, prior, result.T_target_source, T_target_source_guess);
     // Pairs flipping between neighbours make Gauss-Newton jump back and forth along a weakly
     // constrained direction: each reversal halves the applied steps from then on, so the jumps
     // settle in between.

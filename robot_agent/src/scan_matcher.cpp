@@ -42,13 +42,14 @@ PreparedScan ScanMatcher::prepare(const LaserScan& scan, const BeamMotion& motio
   return {thinned(hits, settings_.points), orientedHits(hits, settings_.points)};
 }
 
-std::optional<ScanMatch> ScanMatcher::match(const PreparedScan& scan,
-                                            const SE2& T_map_robot_guess) const {
-  if (!hasMap()) {
-    return std::nullopt;
-  }
+bool ScanMatcher::matchesTwice() const {
+  return settings_.match_newest_keyframe && settings_.mode == MatchMode::kScanToMap;
+}
+
+ScanMatch ScanMatcher::matchAgainst(const IcpTarget& target, const PreparedScan& scan,
+                                    const SE2& T_map_robot_guess) const {
   ScanMatch match;
-  match.icp = alignPointToLine(target_, scan.source, T_map_robot_guess, settings_.icp);
+  match.icp = alignPointToLine(target, scan.source, T_map_robot_guess, settings_.icp);
   match.T_anchor_robot = T_map_anchor_.inverse() * match.icp.T_target_source;
   // (x, y) of T_anchor_robot = R_aᵀ (t − t_a), θ − θ_a: the covariance turns with R_aᵀ.
   Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
@@ -57,7 +58,26 @@ std::optional<ScanMatch> ScanMatcher::match(const PreparedScan& scan,
   match.covariance(0, 0) += settings_.min_sigma_xy_m * settings_.min_sigma_xy_m;
   match.covariance(1, 1) += settings_.min_sigma_xy_m * settings_.min_sigma_xy_m;
   match.covariance(2, 2) += settings_.min_sigma_theta_rad * settings_.min_sigma_theta_rad;
+  if (matchesTwice()) {
+    match.covariance *= settings_.two_match_covariance_factor;
+  }
   return match;
+}
+
+std::optional<ScanMatch> ScanMatcher::match(const PreparedScan& scan,
+                                            const SE2& T_map_robot_guess) const {
+  if (!hasMap()) {
+    return std::nullopt;
+  }
+  return matchAgainst(target_, scan, T_map_robot_guess);
+}
+
+std::optional<ScanMatch> ScanMatcher::matchNewestKeyframe(const PreparedScan& scan,
+                                                          const SE2& T_map_robot_guess) const {
+  if (!hasMap() || !matchesTwice()) {
+    return std::nullopt;
+  }
+  return matchAgainst(newest_target_, scan, T_map_robot_guess);
 }
 
 bool ScanMatcher::isKeyframe(const SE2& T_map_robot) const {
@@ -84,6 +104,9 @@ void ScanMatcher::addKeyframe(const PreparedScan& scan, const SE2& T_map_robot) 
                              keyframe.normals.end());
   }
   target_ = IcpTarget(std::move(local_map));
+  if (matchesTwice()) {
+    newest_target_ = IcpTarget(keyframes_.back());
+  }
   T_map_anchor_ = T_map_robot;
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 namespace mrslam::robot {
@@ -231,6 +232,56 @@ TEST(EkfEstimatorTest, ImuGapsGiveNoYawRateUpdate) {
   EXPECT_EQ(ekf.counters().yaw_rate_updates, 0u);
   ekf.addImu(imuAt(2'020'000'000, 0.0, 0.0));
   EXPECT_EQ(ekf.counters().yaw_rate_updates, 1u);
+}
+
+// A laser at (x, y), heading 0, in the room −3 ≤ x ≤ 3, −2 ≤ y ≤ 2: 360 beams over the full turn.
+LaserScan roomScan(std::int64_t t_ns, double x, double y) {
+  LaserScan scan;
+  scan.stamp = Stamp{t_ns};
+  scan.angle_min_rad = -M_PI;
+  scan.angle_increment_rad = M_PI / 180.0;
+  scan.range_min_m = 0.02;
+  scan.range_max_m = 30.0;
+  for (int i = 0; i < 360; ++i) {
+    const double angle = scan.beamAngle(static_cast<std::size_t>(i));
+    const double c = std::cos(angle);
+    const double s = std::sin(angle);
+    double range = scan.range_max_m;
+    if (std::abs(c) > 1e-9) {
+      range = std::min(range, ((c > 0.0 ? 3.0 : -3.0) - x) / c);
+    }
+    if (std::abs(s) > 1e-9) {
+      range = std::min(range, ((s > 0.0 ? 2.0 : -2.0) - y) / s);
+    }
+    scan.ranges_m.push_back(static_cast<float>(range));
+  }
+  return scan;
+}
+
+// Two scans 10 cm apart; the second ICP is given a single iteration, so it ends unconverged
+// (kNotConverged, still at the first, wide pair gate) with every point paired.
+EkfCounters countersWithOneIcpIteration(bool accept_unconverged) {
+  EkfSettings settings;
+  settings.scan_matching.icp.max_iterations = 1;
+  settings.scan_matching.accept_unconverged = accept_unconverged;
+  EkfEstimator ekf(platform(), SensorMounting{}, settings);
+  const OccupancyGrid map(0.05);
+  ekf.addOdometry({Stamp{0}, SE2()});
+  ekf.addScan(roomScan(0, 0.0, 0.0), map);
+  ekf.addOdometry({Stamp{100'000'000}, SE2(0.1, 0.0, 0.0)});
+  ekf.addScan(roomScan(100'000'000, 0.1, 0.0), map);
+  EXPECT_TRUE(ekf.lastScanMatch().has_value());
+  EXPECT_EQ(ekf.lastScanMatch()->icp.status, IcpStatus::kNotConverged);
+  return ekf.counters();
+}
+
+TEST(EkfEstimatorTest, AnUnconvergedMatchIsAFailureUnlessAccepted) {
+  const EkfCounters refused = countersWithOneIcpIteration(false);
+  EXPECT_EQ(refused.scan_match_failures, 1u);
+  EXPECT_EQ(refused.scan_updates, 0u);
+  const EkfCounters accepted = countersWithOneIcpIteration(true);
+  EXPECT_EQ(accepted.scan_match_failures, 0u);
+  EXPECT_EQ(accepted.scan_updates, 1u);
 }
 
 TEST(EkfEstimatorTest, CovarianceStaysSymmetricAndPositive) {

@@ -29,7 +29,10 @@ estimator:
   scan_delay_s: 0.05
   imu: {use_heading: false, heading_sigma_rad: 0.03, max_gap_s: 1.0}
   scan_matching: {mode: scan_to_scan, local_map_keyframes: 3, max_range_m: 8.0,
-                  min_correspondence_m: 0.2, min_sigma_xy_m: 0.02, covariance_shape_scale: 0.3}
+                  min_correspondence_m: 0.2, min_sigma_xy_m: 0.02, covariance_shape_scale: 0.3,
+                  prior_sigma_xy_m: 0.03, prior_sigma_theta_rad: 0.02, residual_sigma_m: 0.01,
+                  accept_unconverged: true, match_newest_keyframe: true,
+                  two_match_covariance_factor: 1.5}
 )");
   EXPECT_EQ(settings.type, EstimatorType::kOdometry);
   EXPECT_DOUBLE_EQ(settings.ekf.gate_probability, 0.99);
@@ -43,6 +46,20 @@ estimator:
   EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.icp.min_correspondence_m, 0.2);
   EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.min_sigma_xy_m, 0.02);
   EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.covariance_shape_scale, 0.3);
+  EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.icp.prior_sigma_xy_m, 0.03);
+  EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.icp.prior_sigma_theta_rad, 0.02);
+  EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.icp.residual_sigma_m, 0.01);
+  EXPECT_TRUE(settings.ekf.scan_matching.accept_unconverged);
+  EXPECT_TRUE(settings.ekf.scan_matching.match_newest_keyframe);
+  EXPECT_DOUBLE_EQ(settings.ekf.scan_matching.two_match_covariance_factor, 1.5);
+}
+
+TEST(EstimatorConfigTest, TheIcpPriorAndTheSecondMatchAreOffByDefault) {
+  const EstimatorSettings settings = load("{}");
+  EXPECT_EQ(settings.ekf.scan_matching.icp.prior_sigma_xy_m, 0.0);
+  EXPECT_EQ(settings.ekf.scan_matching.icp.prior_sigma_theta_rad, 0.0);
+  EXPECT_FALSE(settings.ekf.scan_matching.accept_unconverged);
+  EXPECT_FALSE(settings.ekf.scan_matching.match_newest_keyframe);
 }
 
 TEST(EstimatorConfigTest, BadValuesStopWithTheirPlace) {
@@ -52,6 +69,11 @@ TEST(EstimatorConfigTest, BadValuesStopWithTheirPlace) {
   EXPECT_THROW(load("estimator: {scan_matching: {min_correspondence_m: 2.0, "
                     "max_correspondence_m: 1.0}}"),
                ConfigError);
+  EXPECT_THROW(load("estimator: {scan_matching: {prior_sigma_xy_m: -0.1}}"), ConfigError);
+  EXPECT_THROW(load("estimator: {scan_matching: {prior_sigma_theta_rad: 20}}"), ConfigError);
+  EXPECT_THROW(load("estimator: {scan_matching: {residual_sigma_m: 0}}"), ConfigError);
+  EXPECT_THROW(load("estimator: {scan_matching: {accept_unconverged: maybe}}"), ConfigError);
+  EXPECT_THROW(load("estimator: {scan_matching: {two_match_covariance_factor: 0.5}}"), ConfigError);
   EXPECT_THROW(parseEstimatorType("kalman"), std::invalid_argument);
   EXPECT_EQ(parseEstimatorType("odometry"), EstimatorType::kOdometry);
   EXPECT_STREQ(estimatorTypeName(EstimatorType::kEkf), "ekf");

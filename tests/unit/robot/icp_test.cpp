@@ -133,6 +133,57 @@ TEST(IcpTest, CovarianceIsLargeAlongACorridor) {
   EXPECT_NEAR(result.rms_m, 0.01, 0.005);
 }
 
+TEST(IcpTest, APriorOnTheGuessWeighsAgainstThePairs) {
+  const std::vector<Eigen::Vector2d> room = roomOutline(6.0, 4.0, 0.05);
+  const IcpTarget target = targetOf(room);
+  const SE2 T_target_source(0.10, -0.06, 2.0 * kDeg);
+  std::vector<Eigen::Vector2d> source;
+  for (const Eigen::Vector2d& p : room) {
+    source.push_back(T_target_source.inverse() * p);
+  }
+  const IcpResult plain = alignPointToLine(target, source, SE2(), IcpSettings{});
+  ASSERT_TRUE(plain.converged);
+  // A loose prior (σ far above the offset) leaves the pairs in charge, and eq. 4 is theirs alone.
+  IcpSettings loose;
+  loose.prior_sigma_xy_m = 1.0;
+  loose.prior_sigma_theta_rad = 1.0;
+  const IcpResult held_loosely = alignPointToLine(target, source, SE2(), loose);
+  ASSERT_TRUE(held_loosely.converged);
+  const SE2 error = T_target_source.inverse() * held_loosely.T_target_source;
+  EXPECT_LT(error.translation().norm(), 0.002);
+  EXPECT_LT(std::abs(error.theta()), 0.05 * kDeg);
+  EXPECT_TRUE(held_loosely.covariance.isApprox(plain.covariance, 0.05));
+  // A tight prior (σ far below the offset) keeps the estimate at the guess.
+  IcpSettings tight;
+  tight.prior_sigma_xy_m = 1e-5;
+  tight.prior_sigma_theta_rad = 1e-6;
+  const IcpResult held_tightly = alignPointToLine(target, source, SE2(), tight);
+  EXPECT_LT(held_tightly.T_target_source.translation().norm(), 0.005);
+  EXPECT_LT(std::abs(held_tightly.T_target_source.theta()), 0.1 * kDeg);
+}
+
+TEST(IcpTest, APriorHoldsACorridorsLengthAtTheGuess) {
+  // Two parallel walls along x: the pairs fix y and θ, nothing holds x but the prior.
+  std::vector<Eigen::Vector2d> corridor;
+  for (double x = -10.0; x <= 10.0; x += 0.05) {
+    corridor.emplace_back(x, 1.0);
+    corridor.emplace_back(x, -1.0);
+  }
+  std::vector<Eigen::Vector2d> source;
+  for (std::size_t i = 0; i < corridor.size(); i += 3) {
+    source.push_back(corridor[i] + Eigen::Vector2d(0.0, -0.04));
+  }
+  IcpSettings settings;
+  settings.prior_sigma_xy_m = 0.03;
+  settings.prior_sigma_theta_rad = 0.02;
+  const SE2 guess(0.2, 0.0, 0.0);
+  const IcpResult result = alignPointToLine(targetOf(corridor), source, guess, settings);
+  ASSERT_TRUE(result.converged) << icpStatusName(result.status);
+  EXPECT_NEAR(result.T_target_source.x(), guess.x(), 0.01);
+  EXPECT_NEAR(result.T_target_source.y(), 0.04, 0.002);
+  EXPECT_NEAR(result.T_target_source.theta(), 0.0, 0.05 * kDeg);
+}
+
 TEST(IcpTest, TooFewPointsIsAFailureNotACrash) {
   const IcpTarget target = targetOf(roomOutline(2.0, 2.0, 0.1));
   const IcpResult result = alignPointToLine(target, {{1.0, 0.0}, {1.0, 0.1}}, SE2(), IcpSettings{});

@@ -80,5 +80,42 @@ TEST(ScanMatcherTest, ShapedCovarianceLeavesTheCorridorsAxisUncertain) {
   EXPECT_GT(match->covariance(0, 0), 3.0 * match->covariance(1, 1));
 }
 
+TEST(ScanMatcherTest, TheNewestKeyframeAloneIsASecondMeasurement) {
+  ScanMatcherSettings settings = corridorSettings(0.3);
+  ScanMatcher single(settings, SensorMounting{});
+  settings.match_newest_keyframe = true;
+  settings.two_match_covariance_factor = 1.5;
+  ScanMatcher twice(settings, SensorMounting{});
+  const PreparedScan scan = twice.prepare(corridorScan());
+  const SE2 guess(0.05, 0.02, 0.01);
+  EXPECT_FALSE(twice.matchNewestKeyframe(scan, guess).has_value());  // no map yet
+  // An older keyframe 2 m back, then the newest one (the anchor) at the origin.
+  for (ScanMatcher* matcher : {&single, &twice}) {
+    matcher->addKeyframe(scan, SE2(-2.0, 0.0, 0.0));
+    matcher->addKeyframe(scan, SE2());
+  }
+  EXPECT_FALSE(single.matchNewestKeyframe(scan, guess).has_value());  // off
+  const std::optional<ScanMatch> newest = twice.matchNewestKeyframe(scan, guess);
+  const std::optional<ScanMatch> map = twice.match(scan, guess);
+  ASSERT_TRUE(newest.has_value());
+  ASSERT_TRUE(newest->icp.converged) << icpStatusName(newest->icp.status);
+  EXPECT_NEAR(newest->T_anchor_robot.y(), 0.0, 0.01);
+  EXPECT_NEAR(newest->T_anchor_robot.theta(), 0.0, 0.002);
+  // Both measurements count σ² × the factor: they are not independent.
+  const std::optional<ScanMatch> alone = single.match(scan, guess);
+  ASSERT_TRUE(map.has_value() && alone.has_value());
+  EXPECT_TRUE(map->covariance.isApprox(1.5 * alone->covariance, 1e-9));
+}
+
+TEST(ScanMatcherTest, ScanToScanHasNoSecondMeasurement) {
+  ScanMatcherSettings settings = corridorSettings(0.3);
+  settings.mode = MatchMode::kScanToScan;
+  settings.match_newest_keyframe = true;
+  ScanMatcher matcher(settings, SensorMounting{});
+  const PreparedScan scan = matcher.prepare(corridorScan());
+  matcher.addKeyframe(scan, SE2());
+  EXPECT_FALSE(matcher.matchNewestKeyframe(scan, SE2()).has_value());
+}
+
 }  // namespace
 }  // namespace mrslam::robot

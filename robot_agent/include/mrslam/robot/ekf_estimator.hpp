@@ -9,8 +9,9 @@
 //     repeats the last scan-to-scan motion, with motion_model noise.
 //  2. Scan update: point-to-line ICP against the previous scan or the local map (scan_matcher),
 //     a measurement of T_anchor_robot (the filter's relative pose, pose_filter.hpp) with the fit
-//     covariance, gated (3 dof), Joseph form. A scan far enough from the anchor becomes a
-//     keyframe: the filter's anchor moves to it.
+//     covariance, gated (3 dof), Joseph form; optionally a second one against the newest
+//     keyframe alone, from the same prediction (match_newest_keyframe). A scan far enough from
+//     the anchor becomes a keyframe: the filter's anchor moves to it.
 //  3. IMU update: (a) heading: the stabilised yaw minus the mounting yaw measures θ_map + α, where
 //     α, the IMU's heading of the map frame, is a state initialised from the first reading (so
 //     that reading's noise is not frozen into every later one); (b) yaw rate:
@@ -73,7 +74,7 @@ struct EkfSettings {
 struct EkfCounters {
   std::uint64_t predictions = 0;
   std::uint64_t scans = 0;
-  std::uint64_t scan_updates = 0;         ///< ICP results accepted by the filter
+  std::uint64_t scan_updates = 0;  ///< ICP results accepted (two a scan: match_newest_keyframe)
   std::uint64_t scan_match_failures = 0;  ///< ICP did not converge or found too few pairs
   std::uint64_t scan_rejections = 0;      ///< ICP results gated out
   std::uint64_t keyframes = 0;

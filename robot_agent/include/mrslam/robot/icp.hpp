@@ -7,10 +7,15 @@
 //  3. Residual along the target normal n_j:  r_i = n_jᵀ (x_i − q_j)                      (eq. 1)
 //     Jacobian w.r.t. (t_x, t_y, θ):       J_i = [n_jᵀ, n_jᵀ R'(θ) p_i]                  (eq. 2)
 //  4. Cauchy weights w_i = 1 / (1 + (r_i / c)²), c a fraction of the gate; solve
-//     (Σ w J Jᵀ) δ = −Σ w J r and set T ← (t + δ_t, θ + δ_θ).                             (eq. 3)
+//     (Σ w J Jᵀ + Λ) δ = −Σ w J r − Λ (T − T₀) and set T ← (t + δ_t, θ + δ_θ).            (eq. 3)
+//     Λ is an optional soft prior on the initial guess T₀ (a MAP step, as in a Gauss-Newton
+//     iterated EKF update): Λ = σ_r² diag(σ_xy⁻², σ_xy⁻², σ_θ⁻²), σ_r a pair's residual σ.
+//     It holds what the pairs hardly constrain (a corridor's length) near the guess instead of
+//     letting flipping pairs walk it away; the pairs decide the rest. Λ = 0: plain ICP.
 //  5. Stop when the gate is at d_min and the step is below the thresholds.
 // Fit covariance (Hessian estimate, e.g. Bengtsson & Baerveldt 2003; Censi ICRA 2007 discusses its
-// limits): with the inliers at d_min,  Σ = σ̂² (Σ J Jᵀ)⁻¹,  σ̂² = Σ r² / (n − 3).            (eq. 4)
+// limits): with the inliers at d_min,  Σ = σ̂² (Σ J Jᵀ)⁻¹,  σ̂² = Σ r² / (n − 3)            (eq. 4)
+// (the pairs' alone: the prior Λ does not enter it, the filter fuses the guess itself).
 // Callers scale it and add a floor: the estimate ignores correlated errors and the map's own.
 
 #include <Eigen/Core>
@@ -33,6 +38,9 @@ struct IcpSettings {
   double convergence_rotation_rad = 1e-4;   ///< step below this (and the translation's): converged
   std::size_t min_inliers = 20;             ///< fewer pairs at d_min: the match failed
   double min_inlier_fraction = 0.3;         ///< fewer of the source points paired: failed
+  double prior_sigma_xy_m = 0.0;       ///< σ_xy of the soft prior on the guess (eq. 3); 0: none
+  double prior_sigma_theta_rad = 0.0;  ///< σ_θ of the soft prior on the guess (eq. 3); 0: none
+  double residual_sigma_m = 0.015;     ///< σ_r: one pair's residual σ, weighs the prior (eq. 3)
 };
 
 /// Why a match ended.

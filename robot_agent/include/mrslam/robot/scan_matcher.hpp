@@ -35,6 +35,16 @@ struct ScanMatcherSettings {
   double covariance_shape_scale = 0.0;
   double min_sigma_xy_m = 0.01;        ///< floor of the measurement's σ in x and y
   double min_sigma_theta_rad = 0.005;  ///< floor of the measurement's σ in θ
+  /// An ICP that ran out of iterations with enough pairs (kNotConverged: its last steps were
+  /// still creeping, typically by millimetres) is still a measurement, gated like any other;
+  /// false: it counts as a failed match.
+  bool accept_unconverged = false;
+  /// scan_to_map: the scan is also matched against the newest keyframe alone, a second
+  /// measurement of T_anchor_robot whose errors (another target) are only partly shared.
+  bool match_newest_keyframe = false;
+  /// With match_newest_keyframe, both measurements' covariances are multiplied by this: they
+  /// share the scan and the newest keyframe, so they are not two independent measurements.
+  double two_match_covariance_factor = 2.0;
 };
 
 /// A scan turned into the point sets matching needs (robot frame).
@@ -65,6 +75,10 @@ class ScanMatcher {
   bool hasMap() const { return !keyframes_.empty(); }
   /// ICP of `scan` against the local map from `T_map_robot_guess`; nothing without a map.
   std::optional<ScanMatch> match(const PreparedScan& scan, const SE2& T_map_robot_guess) const;
+  /// With match_newest_keyframe (scan_to_map): ICP of `scan` against the newest keyframe alone;
+  /// otherwise, or without a map, nothing.
+  std::optional<ScanMatch> matchNewestKeyframe(const PreparedScan& scan,
+                                               const SE2& T_map_robot_guess) const;
   /// True when a scan at T_map_robot should become a keyframe (always without a map).
   bool isKeyframe(const SE2& T_map_robot) const;
   /// Adds a keyframe at T_map_robot; it becomes the anchor.
@@ -75,10 +89,16 @@ class ScanMatcher {
   const ScanMatcherSettings& settings() const { return settings_; }
 
  private:
+  /// True when every scan is matched twice (local map and newest keyframe).
+  bool matchesTwice() const;
+  ScanMatch matchAgainst(const IcpTarget& target, const PreparedScan& scan,
+                         const SE2& T_map_robot_guess) const;
+
   const ScanMatcherSettings settings_;
   const SensorMounting mounting_;
   std::deque<OrientedPoints> keyframes_;  ///< map frame, oldest first
   IcpTarget target_;
+  IcpTarget newest_target_;  ///< the newest keyframe alone (match_newest_keyframe)
   SE2 T_map_anchor_;
 };
 
