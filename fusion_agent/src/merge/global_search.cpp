@@ -159,19 +159,25 @@ std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& t
   turn.centre_canvas = Eigen::Vector2d::Constant(0.5 * (turn.canvas - 1));
   const cv::Size size(cv::getOptimalDFTSize(coarse_to.occupied.cols + turn.canvas),
                       cv::getOptimalDFTSize(coarse_to.occupied.rows + turn.canvas));
+  const float w = static_cast<float>(settings.free_weight);
+  const cv::Mat target_weights = spectrum(coarse_to.occupied - w * coarse_to.free, size);
   const cv::Mat target_walls = spectrum(coarse_to.occupied, size);
-  const cv::Mat target_weights = spectrum(
-      coarse_to.occupied - static_cast<float>(settings.free_weight) * coarse_to.free, size);
+  const bool by_free = settings.free_agreement_hypotheses > 0;
+  const cv::Mat target_free = by_free ? spectrum(coarse_to.free, size) : cv::Mat();
 
   const int rotations =
       std::max(1, static_cast<int>(std::lround(2.0 * M_PI / settings.rotation_step_rad)));
   const cv::Size canvas(turn.canvas, turn.canvas);
   std::vector<GlobalHypothesis> all;
+  std::vector<GlobalHypothesis> all_by_free;
   cv::Mat turned_walls;
   cv::Mat turned_free;
+  cv::Mat free_spectrum;
   cv::Mat on_walls;
   cv::Mat on_free;
+  cv::Mat free_on_free;
   cv::Mat scores;
+  cv::Mat free_scores;
   for (int k = 0; k < rotations; ++k) {
     const double theta = 2.0 * M_PI * k / rotations;
     if (!sweeps(theta, settings)) {
@@ -180,10 +186,21 @@ std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& t
     const cv::Mat matrix = turn.matrix(theta);
     cv::warpAffine(coarse_from.occupied, turned_walls, matrix, canvas, cv::INTER_LINEAR);
     cv::warpAffine(coarse_from.free, turned_free, matrix, canvas, cv::INTER_LINEAR);
+    free_spectrum = spectrum(turned_free, size);
     cv::mulSpectrums(target_weights, spectrum(turned_walls, size), on_walls, 0, true);
-    cv::mulSpectrums(target_walls, spectrum(turned_free, size), on_free, 0, true);
-    cv::idft(on_walls - static_cast<float>(settings.free_weight) * on_free, scores,
-             cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    cv::mulSpectrums(target_walls, free_spectrum, on_free, 0, true);
+    cv::idft(on_walls - w * on_free, scores, cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    if (by_free) {
+      // The same score plus the free cells that meet free cells, weighted (before the peak
+      // search below clears the neighbourhoods of its peaks in `scores`).
+      cv::mulSpectrums(target_free, free_spectrum, free_on_free, 0, true);
+      cv::idft(free_on_free, free_scores, cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+      free_scores = scores + static_cast<float>(settings.free_agreement_weight) * free_scores;
+      for (const Peak& peak :
+           strongestPeaks(free_scores, settings.peaks_per_rotation, settings.peak_separation)) {
+        all_by_free.push_back({fineTransform(turn, theta, peak.shift, coarse), peak.score, true});
+      }
+    }
     for (const Peak& peak :
          strongestPeaks(scores, settings.peaks_per_rotation, settings.peak_separation)) {
       all.push_back({fineTransform(turn, theta, peak.shift, coarse), peak.score});
@@ -191,8 +208,14 @@ std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& t
   }
   const Eigen::Vector2d centre_from =
       0.5 * Eigen::Vector2d(from.geometry.width - 1, from.geometry.height - 1);
-  return bestDistinct(std::move(all), settings.kept_hypotheses, centre_from, coarse,
-                      1.5 * settings.rotation_step_rad);
+  std::vector<GlobalHypothesis> kept =
+      bestDistinct(std::move(all), settings.kept_hypotheses, centre_from, coarse,
+                   1.5 * settings.rotation_step_rad);
+  const std::vector<GlobalHypothesis> kept_by_free =
+      bestDistinct(std::move(all_by_free), settings.free_agreement_hypotheses, centre_from, coarse,
+                   1.5 * settings.rotation_step_rad);
+  kept.insert(kept.end(), kept_by_free.begin(), kept_by_free.end());
+  return kept;
 }
 
 }  // namespace mrslam::fusion

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "mrslam/fusion/merge/chain_merger.hpp"
+#include "mrslam/fusion/merge/exhaustive_merger.hpp"
 #include "mrslam/fusion/merge/feature_merger.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
 #include "mrslam/fusion/merge/virtual_robot.hpp"
@@ -10,7 +11,7 @@
 namespace mrslam::fusion {
 
 std::vector<std::string> mergerNames() {
-  return {"seed", "feature", "virtual", "chain"};
+  return {"seed", "feature", "virtual", "exhaustive", "chain"};
 }
 
 std::string defaultMergerName() {
@@ -35,11 +36,28 @@ std::unique_ptr<MapMerger> makeChain(const Config& chain, const Config* methods)
   return std::make_unique<ChainMerger>(std::move(steps), settings);
 }
 
+/// The mergers whose hypotheses the seed pipeline's acceptance judges: their own settings and the
+/// seed merger's (`judge`).
+std::unique_ptr<MapMerger> makeJudgedMerger(const std::string& name, const Config& settings,
+                                            const SeedMergerSettings& judge) {
+  if (name == "virtual") {
+    return std::make_unique<VirtualRobotMerger>(loadVirtualRobotSettings(settings), judge);
+  }
+  if (name == "exhaustive") {
+    return std::make_unique<ExhaustiveMerger>(loadExhaustiveMergerSettings(settings), judge);
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 std::unique_ptr<MapMerger> makeMergerFrom(const std::string& name, const Config& methods) {
   if (name == "chain") {
     return makeChain(methods.section("chain"), &methods);
+  }
+  if (name == "virtual" || name == "exhaustive") {  // judged with the `seed:` section's settings
+    return makeJudgedMerger(name, methods.section(name),
+                            loadSeedMergerSettings(methods.section("seed")));
   }
   return makeMerger(name, methods.section(name));
 }
@@ -51,8 +69,8 @@ std::unique_ptr<MapMerger> makeMerger(const std::string& name, const Config& set
   if (name == "feature") {
     return std::make_unique<FeatureMerger>(loadFeatureMergerSettings(settings));
   }
-  if (name == "virtual") {
-    return std::make_unique<VirtualRobotMerger>(loadVirtualRobotSettings(settings));
+  if (auto judged = makeJudgedMerger(name, settings, SeedMergerSettings{})) {
+    return judged;
   }
   if (name == "chain") {
     return makeChain(settings, nullptr);

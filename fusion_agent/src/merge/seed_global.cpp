@@ -38,13 +38,14 @@ Hypothesis refineCoarse(const GridTransform& coarse, const CoarseScorer& scorer,
 
 }  // namespace
 
-std::vector<Hypothesis> globalHypotheses(const GridMap& from, const GridMap& to,
-                                         const CoarseScorer& scorer, const SearchInputs& inputs,
-                                         const SeedMergerSettings& settings) {
-  std::vector<Hypothesis> hypotheses;
+GlobalHypotheses globalHypotheses(const GridMap& from, const GridMap& to,
+                                  const CoarseScorer& scorer, const SearchInputs& inputs,
+                                  const SeedMergerSettings& settings) {
+  GlobalHypotheses hypotheses;
   for (const GlobalHypothesis& coarse :
        globalSearch(from, to, settings.global, settings.similarity)) {
-    hypotheses.push_back(refineCoarse(coarse.T_to_from, scorer, inputs, settings));
+    (coarse.by_free_agreement ? hypotheses.by_free_agreement : hypotheses.by_walls)
+        .push_back(refineCoarse(coarse.T_to_from, scorer, inputs, settings));
   }
   return hypotheses;
 }

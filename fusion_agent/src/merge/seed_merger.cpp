@@ -131,16 +131,27 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
     lap(clock, timings_.fallback);
   }
   if ((candidates.empty() || !refusal(refined).empty()) && settings_.global_search) {
-    const std::vector<double> rotations =
-        searchGlobally(from, to, scorer, inputs, settings_, seed::Stage::kGlobalSearch, candidates,
-                       refined, result);  // step 10
+    const seed::GlobalHypotheses global =
+        seed::globalHypotheses(from, to, scorer, inputs, settings_);  // step 10
+    addGlobalCandidates(global.by_walls, settings_.global_candidates, seed::Stage::kGlobalSearch,
+                        inputs, candidates, refined, result);
     if ((candidates.empty() || !refusal(refined).empty()) && settings_.global_fine_cells > 0 &&
-        !rotations.empty()) {
+        !global.by_walls.empty()) {
       SeedMergerSettings fine = settings_;  // step 10 again on a finer grid near its rotations
       fine.global.coarse_cells = settings_.global_fine_cells;
-      fine.global.only_rotations_rad = rotations;
-      searchGlobally(from, to, scorer, inputs, fine, seed::Stage::kFineGlobalSearch, candidates,
-                     refined, result);
+      fine.global.free_agreement_hypotheses = 0;
+      for (const seed::Hypothesis& hypothesis : global.by_walls) {
+        fine.global.only_rotations_rad.push_back(hypothesis.T_to_from.theta_rad);
+      }
+      addGlobalCandidates(seed::globalHypotheses(from, to, scorer, inputs, fine).by_walls,
+                          settings_.global_candidates, seed::Stage::kFineGlobalSearch, inputs,
+                          candidates, refined, result);
+    }
+    if ((candidates.empty() || !refusal(refined).empty()) && !global.by_free_agreement.empty()) {
+      // The first sweep's peaks of walls and free floor, last: judged apart, as the coarse score
+      // of walls near walls ranks them low by design.
+      addGlobalCandidates(global.by_free_agreement, settings_.global.free_agreement_hypotheses,
+                          seed::Stage::kFreeGlobalSearch, inputs, candidates, refined, result);
     }
     lap(clock, timings_.global);
   }
@@ -153,7 +164,7 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
   if (!refusal(refined).empty()) {
     // The best candidate is refused: the next ones get their chance, each facing every other
     // candidate as a rival (so one that a better-ranked transform explains as well is refused).
-    if (std::optional<seed::Refined> next = nextAcceptable(candidates, inputs)) {
+    if (std::optional<seed::Refined> next = nextAcceptable(candidates, inputs, refined)) {
       refined = *next;
     }
   }
@@ -184,7 +195,7 @@ MergeResult SeedMerger::judgeHypotheses(const GridMap& from, const GridMap& to,
       seed::searchCandidates(given, static_cast<int>(given.size()), inputs, tables_, settings_);
   seed::Refined refined = refineBest(candidates, inputs);
   if (!refusal(refined).empty()) {
-    if (std::optional<seed::Refined> next = nextAcceptable(candidates, inputs)) {
+    if (std::optional<seed::Refined> next = nextAcceptable(candidates, inputs, refined)) {
       refined = *next;
     }
   }
@@ -192,23 +203,16 @@ MergeResult SeedMerger::judgeHypotheses(const GridMap& from, const GridMap& to,
   return result;
 }
 
-std::vector<double> SeedMerger::searchGlobally(
-    const GridMap& from, const GridMap& to, const seed::CoarseScorer& scorer,
-    const seed::SearchInputs& inputs, const SeedMergerSettings& settings, seed::Stage stage,
-    std::vector<seed::Candidate>& candidates, seed::Refined& refined, MergeResult& result) const {
-  std::vector<seed::Hypothesis> global = seed::globalHypotheses(from, to, scorer, inputs, settings);
-  for (seed::Hypothesis& hypothesis : global) {
+void SeedMerger::addGlobalCandidates(std::vector<seed::Hypothesis> hypotheses, int count,
+                                     seed::Stage stage, const seed::SearchInputs& inputs,
+                                     std::vector<seed::Candidate>& candidates,
+                                     seed::Refined& refined, MergeResult& result) const {
+  for (seed::Hypothesis& hypothesis : hypotheses) {
     hypothesis.stage = stage;
   }
-  result.trials += static_cast<int>(global.size());
-  addCandidates(
-      seed::searchCandidates(global, settings.global_candidates, inputs, tables_, settings_),
-      inputs, candidates, refined);
-  std::vector<double> rotations;
-  for (const seed::Hypothesis& hypothesis : global) {
-    rotations.push_back(hypothesis.T_to_from.theta_rad);
-  }
-  return rotations;
+  result.trials += static_cast<int>(hypotheses.size());
+  addCandidates(seed::searchCandidates(hypotheses, count, inputs, tables_, settings_), inputs,
+                candidates, refined);
 }
 
 void SeedMerger::addCandidates(const std::vector<seed::Candidate>& more,
@@ -225,24 +229,75 @@ void SeedMerger::addCandidates(const std::vector<seed::Candidate>& more,
 }
 
 std::optional<seed::Refined> SeedMerger::nextAcceptable(
-    const std::vector<seed::Candidate>& candidates, const seed::SearchInputs& inputs) const {
+    const std::vector<seed::Candidate>& candidates, const seed::SearchInputs& inputs,
+    const seed::Refined& first) const {
   const std::size_t judged =
       std::min(candidates.size(), static_cast<std::size_t>(settings_.judged_candidates));
-  for (std::size_t k = 1; k < judged; ++k) {
-    std::vector<seed::Candidate> facing = {candidates[k]};
-    for (std::size_t i = 0; i < candidates.size(); ++i) {
-      if (i != k) {
-        facing.push_back(candidates[i]);
-      }
+  const std::size_t from = settings_.refined_rivals > 0 ? 0 : 1;  // the first was judged already
+  for (std::size_t k = from; k < judged; ++k) {
+    seed::Refined refined = first;
+    if (k > 0) {
+      refined = seed::finalize(candidates[k].T_to_from, inputs, tables_, settings_);
+      refined.stage = candidates[k].stage;
     }
-    seed::Refined refined = seed::finalize(candidates[k].T_to_from, inputs, tables_, settings_);
-    refined.stage = candidates[k].stage;
-    refined.rival_share = seed::rivalShare(facing, inputs, tables_, settings_);
-    if (refusal(refined).empty()) {
-      return refined;
+    std::vector<bool> excluded(candidates.size(), false);
+    for (int check = 0;; ++check) {
+      std::vector<seed::Candidate> facing = {candidates[k]};
+      std::vector<std::size_t> index = {k};
+      for (std::size_t i = 0; i < candidates.size(); ++i) {
+        if (i != k && !excluded[i]) {
+          facing.push_back(candidates[i]);
+          index.push_back(i);
+        }
+      }
+      refined.rival_share = seed::rivalShare(facing, inputs, tables_, settings_);
+      if (refusal(refined).empty()) {
+        return refined;
+      }
+      // Refused for a rival alone: the rival counts only when, refined itself, it passes its own
+      // tests somewhere else (a copy of the candidate slid along a corridor often settles back
+      // onto it).
+      const std::optional<std::size_t> rival = seed::rivalOf(facing, inputs, settings_);
+      seed::Refined alone = refined;
+      alone.rival_share = 0.0;
+      if (check >= settings_.refined_rivals || !rival || !refusal(alone).empty()) {
+        break;
+      }
+      const std::size_t r = index[*rival];
+      const seed::Refined rival_refined =
+          seed::finalize(candidates[r].T_to_from, inputs, tables_, settings_);
+      const double apart = (rival_refined.T_to_from.apply(inputs.pivot_from) -
+                            refined.T_to_from.apply(inputs.pivot_from))
+                               .norm();
+      if (!failsOnItsOwn(rival_refined) && apart > seed::kRivalCells) {
+        break;
+      }
+      // The rival goes, and with it every candidate that places `from` as it does (before or
+      // after its refinement): the other steps of the same slide.
+      for (std::size_t i = 0; i < candidates.size(); ++i) {
+        excluded[i] =
+            excluded[i] || i == r ||
+            (i != k && (samePlace(candidates[i].T_to_from, candidates[r].T_to_from, inputs) ||
+                        samePlace(candidates[i].T_to_from, rival_refined.T_to_from, inputs)));
+      }
     }
   }
   return std::nullopt;
+}
+
+bool SeedMerger::samePlace(const GridTransform& a, const GridTransform& b,
+                           const seed::SearchInputs& inputs) {
+  constexpr double kSameTurnRad = 5.0 * M_PI / 180.0;
+  return (a.apply(inputs.pivot_from) - b.apply(inputs.pivot_from)).norm() <= seed::kRivalCells &&
+         std::abs(std::remainder(a.theta_rad - b.theta_rad, 2.0 * M_PI)) <= kSameTurnRad;
+}
+
+bool SeedMerger::failsOnItsOwn(const seed::Refined& refined) const {
+  const long long overlap = refined.full.agreement + refined.full.disagreement;
+  return (overlap < settings_.min_overlap_cells && !smallOverlapDecisive(refined)) ||
+         verificationIndex(refined.full) < settings_.min_verification_v ||
+         refined.structure < settings_.min_structure_agreement ||
+         refined.entropy_gap_cells > settings_.entropy_agreement_cells;
 }
 
 seed::Refined SeedMerger::refineBest(const std::vector<seed::Candidate>& candidates,
@@ -298,6 +353,12 @@ std::string SeedMerger::refusal(const seed::Refined& refined) const {
     return "verification index " + describe(verification) +
            " of a finer sweep's transform is below " +
            describe(settings_.global_fine_min_verification);
+  }
+  if (refined.stage == seed::Stage::kFreeGlobalSearch &&
+      verification < settings_.global_free_min_verification) {
+    return "verification index " + describe(verification) +
+           " of a transform found with free agreement is below " +
+           describe(settings_.global_free_min_verification);
   }
   if (refined.structure < settings_.min_structure_agreement) {
     return "only " + describe(refined.structure) + " of the overlapping walls meet walls (below " +

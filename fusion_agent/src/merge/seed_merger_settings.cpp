@@ -116,6 +116,7 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       static_cast<int>(section.getInt("judged_candidates", settings.judged_candidates, {1, 100}));
   settings.wall_anchor = section.getBool("wall_anchor", settings.wall_anchor);
   settings.wall_ranking = section.getBool("wall_ranking", settings.wall_ranking);
+  settings.refined_rivals = readInt(section, "refined_rivals", settings.refined_rivals, {0, 10});
   settings.rank_by_overlap = section.getBool("rank_by_overlap", settings.rank_by_overlap);
   settings.decisive_wall_ambiguity =
       section.getDouble("decisive_wall_ambiguity", settings.decisive_wall_ambiguity, {0.0, 1.0});
@@ -140,6 +141,8 @@ void readGlobalSearchSettings(const Config& section, SeedMergerSettings& setting
       readInt(section, "global_fine_cells", settings.global_fine_cells, {0, 64});
   settings.global_fine_min_verification = section.getDouble(
       "global_fine_min_verification", settings.global_fine_min_verification, {0.0, 1.0});
+  settings.global_free_min_verification = section.getDouble(
+      "global_free_min_verification", settings.global_free_min_verification, {0.0, 1.0});
   settings.global.coarse_cells =
       readInt(section, "global_coarse_cells", settings.global.coarse_cells, {1, 64});
   settings.global.rotation_step_rad =
@@ -151,6 +154,11 @@ void readGlobalSearchSettings(const Config& section, SeedMergerSettings& setting
       readInt(section, "global_hypotheses", settings.global.kept_hypotheses, {1, 1000});
   settings.global.free_weight =
       section.getDouble("global_free_weight", settings.global.free_weight, {0.0, 10.0});
+  settings.global.free_agreement_weight = section.getDouble(
+      "global_free_agreement_weight", settings.global.free_agreement_weight, {0.0, 10.0});
+  settings.global.free_agreement_hypotheses =
+      readInt(section, "global_free_agreement_hypotheses",
+              settings.global.free_agreement_hypotheses, {0, 1000});
   settings.global_polish_step_rad =
       kDegree * section.getDouble("global_polish_step_deg",
                                   settings.global_polish_step_rad / kDegree, {0.05, 10.0});

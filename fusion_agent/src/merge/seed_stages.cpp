@@ -316,6 +316,8 @@ const char* stageName(Stage stage) {
       return "seed/global-search";
     case Stage::kFineGlobalSearch:
       return "seed/global-search-fine";
+    case Stage::kFreeGlobalSearch:
+      return "seed/global-search-free";
     case Stage::kGiven:
       return "seed/given";
     case Stage::kSegments:
@@ -362,34 +364,42 @@ long long fullSimilarity(const GridTransform& T_to_from, const SearchInputs& inp
 
 }  // namespace
 
-double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
-                  const ComparisonTables& tables, const SeedMergerSettings& settings) {
-  constexpr double kRivalCells = 10.0;
+std::optional<std::size_t> rivalOf(const std::vector<Candidate>& candidates,
+                                   const SearchInputs& inputs, const SeedMergerSettings& settings) {
   if (candidates.empty() || candidates.front().similarity <= 0) {
-    return 0.0;
+    return std::nullopt;
   }
-  const Candidate& chosen = candidates.front();
-  const Eigen::Vector2d centre = chosen.T_to_from.apply(inputs.pivot_from);
+  const Eigen::Vector2d centre = candidates.front().T_to_from.apply(inputs.pivot_from);
   for (std::size_t i = 1; i < candidates.size(); ++i) {
     const Candidate& other = candidates[i];
     if (meetsBars(other, settings) &&
         (other.T_to_from.apply(inputs.pivot_from) - centre).norm() > kRivalCells) {
-      const long long best = fullSimilarity(chosen.T_to_from, inputs, tables);
-      const double by_similarity =
-          best > 0 ? static_cast<double>(fullSimilarity(other.T_to_from, inputs, tables)) /
-                         static_cast<double>(best)
-                   : 1.0;
-      if (!settings.wall_ranking) {
-        return by_similarity;
-      }
-      // Either measure may favour the wrong one: the rival is judged by the closer of the two.
-      const double by_walls =
-          chosen.walls > 0 ? static_cast<double>(other.walls) / static_cast<double>(chosen.walls)
-                           : 1.0;
-      return std::max(by_similarity, by_walls);
+      return i;
     }
   }
-  return 0.0;
+  return std::nullopt;
+}
+
+double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
+                  const ComparisonTables& tables, const SeedMergerSettings& settings) {
+  const std::optional<std::size_t> rival = rivalOf(candidates, inputs, settings);
+  if (!rival) {
+    return 0.0;
+  }
+  const Candidate& chosen = candidates.front();
+  const Candidate& other = candidates[*rival];
+  const long long best = fullSimilarity(chosen.T_to_from, inputs, tables);
+  const double by_similarity =
+      best > 0 ? static_cast<double>(fullSimilarity(other.T_to_from, inputs, tables)) /
+                     static_cast<double>(best)
+               : 1.0;
+  if (!settings.wall_ranking) {
+    return by_similarity;
+  }
+  // Either measure may favour the wrong one: the rival is judged by the closer of the two.
+  const double by_walls =
+      chosen.walls > 0 ? static_cast<double>(other.walls) / static_cast<double>(chosen.walls) : 1.0;
+  return std::max(by_similarity, by_walls);
 }
 
 std::vector<Candidate> mergeCandidates(std::vector<Candidate> a, const std::vector<Candidate>& b,
@@ -432,6 +442,13 @@ Refined settleBySimilarity(const GridTransform& polished, const SearchInputs& in
 
 }  // namespace
 
+double fullStructure(const GridTransform& T_to_from, const SearchInputs& inputs,
+                     const ComparisonTables& tables) {
+  return std::min(
+      structureAgreement(inputs.all_samples, inputs.to, T_to_from, tables).index(),
+      structureAgreement(inputs.occupied_to, inputs.from, T_to_from.inverse(), tables).index());
+}
+
 Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                  const ComparisonTables& tables, const SeedMergerSettings& settings) {
   TranslationSearch coarse;
@@ -441,10 +458,7 @@ Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                                              inputs, tables, settings, coarse);
   const TranslationSearch fine_entropy =
       searchTranslation(inputs.fine_samples, inputs.to, coarse.least_entropy, 1, tables);
-  refined.structure = std::min(
-      structureAgreement(inputs.all_samples, inputs.to, refined.T_to_from, tables).index(),
-      structureAgreement(inputs.occupied_to, inputs.from, refined.T_to_from.inverse(), tables)
-          .index());
+  refined.structure = fullStructure(refined.T_to_from, inputs, tables);
   refined.least_entropy = fine_entropy.least_entropy;
   refined.entropy_gap_cells = (refined.T_to_from.t_cells - refined.least_entropy.t_cells).norm();
   return refined;

@@ -2,6 +2,7 @@
 // Private stages of SeedMerger (seed_merger.hpp summarises the pipeline): each stage is a
 // function of the prepared maps, so merge() reads as the list of blocks.
 
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -43,9 +44,17 @@ std::vector<PairCandidate> rankPairs(const PreparedMap& from, const PreparedMap&
                                      const SeedMergerSettings& settings);
 
 /// The step of the pipeline that proposed a transform (MergeResult::method names it).
-enum class Stage { kSegments, kRadonFallback, kGlobalSearch, kFineGlobalSearch, kGiven };
+enum class Stage {
+  kSegments,
+  kRadonFallback,
+  kGlobalSearch,
+  kFineGlobalSearch,
+  kFreeGlobalSearch,
+  kGiven
+};
 
-/// "seed", "seed/radon-fallback", "seed/global-search", "seed/global-search-fine" or "seed/given"
+/// "seed", "seed/radon-fallback", "seed/global-search", "seed/global-search-fine",
+/// "seed/global-search-free" (the global search's score with free agreement) or "seed/given"
 /// (hypotheses from another method, SeedMerger::judgeHypotheses).
 const char* stageName(Stage stage);
 
@@ -125,6 +134,13 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
 double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
                   const ComparisonTables& tables, const SeedMergerSettings& settings);
 
+/// Rivals lie farther than this (cells) from the first candidate at the centre of `from`.
+constexpr double kRivalCells = 10.0;
+
+/// The index of the candidate that rivalShare() compares with the first, if any.
+std::optional<std::size_t> rivalOf(const std::vector<Candidate>& candidates,
+                                   const SearchInputs& inputs, const SeedMergerSettings& settings);
+
 /// Merges two ordered candidate lists into one, in the same order.
 std::vector<Candidate> mergeCandidates(std::vector<Candidate> a, const std::vector<Candidate>& b,
                                        const SeedMergerSettings& settings);
@@ -145,6 +161,11 @@ struct Refined {
 
 /// Rotation polish (step 7 of seed_merger.hpp), block 8 again at the polished angle, then ±1 cell
 /// on all known cells for both the best similarity and the least entropy.
+/// Block 9's structure agreement: the lesser of `from`'s walls (all known cells) on `to`'s and
+/// all of `to`'s walls on `from`'s.
+double fullStructure(const GridTransform& T_to_from, const SearchInputs& inputs,
+                     const ComparisonTables& tables);
+
 Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                  const ComparisonTables& tables, const SeedMergerSettings& settings);
 
@@ -194,9 +215,14 @@ std::vector<Hypothesis> fallbackHypotheses(const PreparedMap& from, const Prepar
 
 /// Step 10 of seed_merger.hpp: hypotheses of the global search (global_search.hpp), each
 /// refined at full resolution by the coarse score over rotations within half a sweep step (and
-/// `global_polish_step`) and translations within a coarse cell.
-std::vector<Hypothesis> globalHypotheses(const GridMap& from, const GridMap& to,
-                                         const CoarseScorer& scorer, const SearchInputs& inputs,
-                                         const SeedMergerSettings& settings);
+/// `global_polish_step`) and translations within a coarse cell; those of the walls' score and
+/// those of the score with free agreement apart, each best first.
+struct GlobalHypotheses {
+  std::vector<Hypothesis> by_walls;
+  std::vector<Hypothesis> by_free_agreement;
+};
+GlobalHypotheses globalHypotheses(const GridMap& from, const GridMap& to,
+                                  const CoarseScorer& scorer, const SearchInputs& inputs,
+                                  const SeedMergerSettings& settings);
 
 }  // namespace mrslam::fusion::seed

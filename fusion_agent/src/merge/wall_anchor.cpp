@@ -47,7 +47,8 @@ WallSearch anchorOnWalls(const GridTransform& T_to_from, int reach, const Search
                          const ComparisonTables& tables) {
   WallSearch search;
   search.best = T_to_from;
-  search.best_balance = wallBalance(T_to_from, inputs, tables);
+  const long long unshifted = wallBalance(T_to_from, inputs, tables);
+  search.best_balance = unshifted;
   Eigen::Vector2i best_shift = Eigen::Vector2i::Zero();
   std::vector<ShiftBalance> balances;
   for (int dy = -reach; dy <= reach; ++dy) {
@@ -56,7 +57,7 @@ WallSearch anchorOnWalls(const GridTransform& T_to_from, int reach, const Search
       GridTransform shifted = T_to_from;
       shifted.t_cells += shift.cast<double>();
       const long long balance =
-          dx == 0 && dy == 0 ? search.best_balance : wallBalance(shifted, inputs, tables);
+          dx == 0 && dy == 0 ? unshifted : wallBalance(shifted, inputs, tables);
       balances.emplace_back(shift, balance);
       if (balance > search.best_balance) {
         search.best_balance = balance;

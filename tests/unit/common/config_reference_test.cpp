@@ -215,6 +215,7 @@ const std::map<FileKind, std::map<std::string, std::string>> kExtraFiles = {
           "  seed: {}\n"
           "  feature: {}\n"
           "  virtual: {}\n"
+          "  exhaustive: {}\n"
           "  chain: {}\n"},
      }},
     {FileKind::kTeam,

@@ -79,7 +79,7 @@ TEST(FusionConfigTest, TheMergeMethodMakesItsMergerWithItsSettings) {
   EXPECT_EQ(feature.make_merger()->name(), "feature");
   EXPECT_THAT(loadError("merge:\n  method: carpin\n"),
               HasSubstr("fusion.yaml:2: merge.method: 'carpin' is not one of: seed, feature, "
-                        "virtual, chain, none"));
+                        "virtual, exhaustive, chain, none"));
   EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    canny_low: -1\n"),
               HasSubstr("fusion.yaml:4: merge.seed.canny_low: -1 is out of range"));
   EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    bogus: 1\n"),

@@ -44,12 +44,14 @@ TEST(MergeGlobalSearchTest, FindsAKnownTurnAndShiftOfARealCrop) {
     ++cases;
     const std::vector<GlobalHypothesis> hypotheses =
         globalSearch(known.from, known.to, settings, SimilaritySettings{});
-    EXPECT_LE(static_cast<int>(hypotheses.size()), settings.kept_hypotheses);
+    EXPECT_LE(static_cast<int>(hypotheses.size()),
+              settings.kept_hypotheses + settings.free_agreement_hypotheses);
     found += truthAmong(hypotheses, known, settings) ? 1 : 0;
   }
   EXPECT_GE(found, 3) << "of " << cases << " crops overlapping by 60 % or more";
 }
 
+// Best first within each score: the walls' (s) first, then those with free agreement (s_f).
 TEST(MergeGlobalSearchTest, HypothesesComeBestFirst) {
   const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/carpin-intel.txt"));
   ASSERT_TRUE(map.isValid());
@@ -62,7 +64,10 @@ TEST(MergeGlobalSearchTest, HypothesesComeBestFirst) {
       globalSearch(known.from, known.to, GlobalSearchSettings{}, SimilaritySettings{});
   ASSERT_FALSE(hypotheses.empty());
   for (std::size_t i = 1; i < hypotheses.size(); ++i) {
-    EXPECT_GE(hypotheses[i - 1].score, hypotheses[i].score);
+    EXPECT_TRUE(!hypotheses[i - 1].by_free_agreement || hypotheses[i].by_free_agreement);
+    if (hypotheses[i - 1].by_free_agreement == hypotheses[i].by_free_agreement) {
+      EXPECT_GE(hypotheses[i - 1].score, hypotheses[i].score);
+    }
   }
 }
 
@@ -78,13 +83,16 @@ TEST(MergeGlobalSearchTest, NoHypothesisWithoutWalls) {
 TEST(MergeGlobalSearchTest, SettingsComeFromTheSeedSection) {
   const SeedMergerSettings settings = loadSeedMergerSettings(Config::loadString(
       "global_search: false\nglobal_coarse_cells: 6\nglobal_rotation_step_deg: 2\n"
-      "global_hypotheses: 20\nglobal_candidates: 9\n",
+      "global_hypotheses: 20\nglobal_candidates: 9\nglobal_free_agreement_weight: 0.3\n"
+      "global_free_agreement_hypotheses: 4\n",
       "merge.yaml"));
   EXPECT_FALSE(settings.global_search);
   EXPECT_EQ(settings.global.coarse_cells, 6);
   EXPECT_NEAR(settings.global.rotation_step_rad, 2.0 * kDegree, 1e-12);
   EXPECT_EQ(settings.global.kept_hypotheses, 20);
   EXPECT_EQ(settings.global_candidates, 9);
+  EXPECT_DOUBLE_EQ(settings.global.free_agreement_weight, 0.3);
+  EXPECT_EQ(settings.global.free_agreement_hypotheses, 4);
 }
 
 TEST(MergeGlobalSearchTest, TheSeedMergerNamesTheStepOfItsAnswer) {
@@ -100,7 +108,7 @@ TEST(MergeGlobalSearchTest, TheSeedMergerNamesTheStepOfItsAnswer) {
   ASSERT_TRUE(result.accepted) << result.reason;
   EXPECT_TRUE(merge_test::isSuccess(merge_test::poseError(result.T_to_from, known)));
   EXPECT_TRUE(result.method == "seed" || result.method == "seed/radon-fallback" ||
-              result.method == "seed/global-search")
+              result.method == "seed/global-search" || result.method == "seed/global-search-free")
       << result.method;
 }
 

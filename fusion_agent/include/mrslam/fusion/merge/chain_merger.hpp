@@ -38,9 +38,9 @@ void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& se
                  MergeResult& result);
 
 /// The default steps of a chain.
-constexpr const char* kDefaultChainSteps = "seed,virtual";
+constexpr const char* kDefaultChainSteps = "exhaustive,seed";
 
-/// The step names of a `steps` value ("seed,virtual"); throws std::invalid_argument for an empty
+/// The step names of a `steps` value ("exhaustive,seed"); throws std::invalid_argument for an empty
 /// list, "chain" itself or a repeated step.
 std::vector<std::string> parseChainSteps(const std::string& steps);
 

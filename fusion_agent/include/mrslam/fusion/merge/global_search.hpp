@@ -16,6 +16,13 @@
 // 4. The `peaks_per_rotation` strongest peaks of each rotation (no two within `peak_separation`
 //    coarse cells) join one list; the `kept_hypotheses` best of it, no two alike (within
 //    `coarse_cells` cells and 1.5 rotation steps), are returned, best first.
+// 5. With `free_agreement_hypotheses` > 0, a second score of the same rotations adds the free
+//    cells of `from` that meet free cells of `to`, times `free_agreement_weight`:
+//      s_f(t) = s(t) + f Σ_u F_from(θ)(u) F_to(u + t).
+//    Walls alone favour laying cluttered parts of the maps onto each other; an overlap that is
+//    mostly shared open floor with few walls (a hall, a wide corridor) scores low on s and is
+//    found by s_f. Its `free_agreement_hypotheses` best peaks (chosen as in step 4) follow those
+//    of s, marked `by_free_agreement`.
 // The answer is coarse: within about one coarse cell and half a rotation step of a true peak.
 // The caller refines it (seed_global.cpp) and verifies it like any other hypothesis.
 
@@ -34,6 +41,8 @@ struct GlobalSearchSettings {
   int kept_hypotheses = 12;                       ///< best peaks over all rotations returned
   double free_weight = 0.5;                       ///< w: cost of a wall on the other's free space
   int peak_separation = 2;                        ///< coarse cells between two peaks of a rotation
+  double free_agreement_weight = 0.1;  ///< step 5: gain of a free cell on the other's free cell
+  int free_agreement_hypotheses = 6;   ///< step 5: best peaks of that score returned (0: off)
   std::vector<double>
       only_rotations_rad;  ///< when not empty: the sweep's rotations near these only
 };
@@ -42,10 +51,11 @@ struct GlobalSearchSettings {
 struct GlobalHypothesis {
   GridTransform T_to_from;
   double score = 0.0;
+  bool by_free_agreement = false;  ///< a peak of s_f (step 5), not of s
 };
 
-/// Steps 1-4: the best coarse transforms of `from` onto `to`, best first (empty when either map
-/// has no occupied cell).
+/// Steps 1-5: the best coarse transforms of `from` onto `to` by s, best first, then those by s_f,
+/// best first (empty when either map has no occupied cell).
 std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& to,
                                            const GlobalSearchSettings& settings,
                                            const SimilaritySettings& classes);

@@ -59,13 +59,19 @@
 //    steps 6-8 as well. When still refused, a second sweep on a finer grid (`global_fine_cells`)
 //    turns only within one rotation step of the first's hypotheses; its transforms must also
 //    reach V ≥ `global_fine_min_verification` (a finer grid also finds near misses of distorted
-//    maps). MergeResult::method names the step whose candidate is returned.
+//    maps). When still refused, the first sweep's peaks of a second score that also counts free
+//    cells meeting free cells (`global_free_agreement_*`, global_search.hpp step 5: overlaps of
+//    open floor with few walls) join last; theirs must reach V ≥ `global_free_min_verification`.
+//    MergeResult::method names the step whose candidate is returned.
 // Acceptance (ours): with `rank_by_overlap`, candidates whose overlap is below
 // `min_overlap_cells` rank after the others and are no rival. The translation also counts as
 // fixed when the wall balance's runner-up share is at most `decisive_wall_ambiguity` and agr -
 // dis's at most `max_open_floor_ambiguity` (open floor slides along a corridor, walls do not).
 // An overlap of `small_overlap_cells` suffices when the structure agreement is at least
-// `small_overlap_structure` and no rival exists.
+// `small_overlap_structure` and no rival exists. When the best candidate is refused, the next
+// `judged_candidates` are judged in turn, each facing the others as rivals; one refused for its
+// rival alone is judged again without it when that rival, refined, fails its own overlap, V,
+// structure or entropy test or settles onto the candidate (`refined_rivals`).
 // Randomness comes from `seed` only: one merge of the same maps always gives the same answer.
 // Choices where the description is silent: D is the distance to the segment's total-least-
 // squares line and Δ the turning angle over chords of k points; the arc histogram is that of Δ;
@@ -94,6 +100,7 @@ namespace seed {
 enum class Stage;
 class CoarseScorer;
 struct Candidate;
+struct Hypothesis;
 struct Refined;
 struct SearchInputs;
 }  // namespace seed
@@ -129,10 +136,12 @@ struct SeedMergerSettings {
   double max_open_floor_ambiguity = 0.975;  ///< agr - dis runner-up bar when walls fix the shift
   double max_rival_share = 0.93;            ///< largest agr - dis of a rival transform / best
   int judged_candidates = 3;                ///< candidates judged in turn when the best is refused
-  bool wall_anchor = true;       ///< step 7: translation by walls near walls before agr - dis
-  bool wall_ranking = true;      ///< candidates placed and ranked by walls, rivals judged by both
-  bool rank_by_overlap = true;   ///< candidates whose overlap is below min_overlap_cells rank last
-  int wall_icp_iterations = 30;  ///< final refinement: ICP of walls onto walls (0: off)
+  bool wall_anchor = true;      ///< step 7: translation by walls near walls before agr - dis
+  bool wall_ranking = true;     ///< candidates placed and ranked by walls, rivals judged by both
+  bool rank_by_overlap = true;  ///< candidates whose overlap is below min_overlap_cells rank last
+  int refined_rivals = 2;  ///< judged candidates refused for a rival alone: rivals refined in turn,
+                           ///< dropped when they fail on their own or settle on the candidate
+  int wall_icp_iterations = 30;          ///< final refinement: ICP of walls onto walls (0: off)
   double wall_icp_distance_cells = 3.0;  ///< final refinement: farthest wall matched
   bool radon_fallback = true;            ///< try global Radon rotations when segments fail
   int fallback_rotations = 4;            ///< fallback: Radon peaks tried (× 2 half turns)
@@ -143,6 +152,7 @@ struct SeedMergerSettings {
   int global_candidates = 6;  ///< step 10: refined hypotheses given the ±δ search
   int global_fine_cells = 2;  ///< finer sweep near step 10's rotations: coarse cells (0: off)
   double global_fine_min_verification = 0.96;  ///< least V of a transform of the finer sweep
+  double global_free_min_verification = 0.98;  ///< least V of a transform found by free agreement
   std::uint32_t seed = 1;                      ///< seed of the random segment starts
 };
 
@@ -181,17 +191,27 @@ class SeedMerger : public MapMerger {
   /// Adds `more` to the ordered `candidates`; `refined` follows a new best and the rival share.
   void addCandidates(const std::vector<seed::Candidate>& more, const seed::SearchInputs& inputs,
                      std::vector<seed::Candidate>& candidates, seed::Refined& refined) const;
-  /// Step 10 with `settings`' global search: its refined hypotheses join the candidates; returns
-  /// their rotations.
-  std::vector<double> searchGlobally(const GridMap& from, const GridMap& to,
-                                     const seed::CoarseScorer& scorer,
-                                     const seed::SearchInputs& inputs,
-                                     const SeedMergerSettings& settings, seed::Stage stage,
-                                     std::vector<seed::Candidate>& candidates,
-                                     seed::Refined& refined, MergeResult& result) const;
-  /// The first of the next `judged_candidates` - 1 candidates that passes block 9, refined.
+  /// Step 10: the `count` best of the global search's refined `hypotheses`, labelled `stage`,
+  /// join the candidates.
+  void addGlobalCandidates(std::vector<seed::Hypothesis> hypotheses, int count, seed::Stage stage,
+                           const seed::SearchInputs& inputs,
+                           std::vector<seed::Candidate>& candidates, seed::Refined& refined,
+                           MergeResult& result) const;
+  /// The first of the `judged_candidates` candidates that passes block 9, refined; `first` is
+  /// the refined first candidate (refused). A candidate refused for its rival alone is judged
+  /// again without it when the rival, refined, failsOnItsOwn() or settles within kRivalCells of
+  /// the candidate (up to `refined_rivals` rivals in turn); the candidates in the samePlace() as
+  /// that rival go with it.
   std::optional<seed::Refined> nextAcceptable(const std::vector<seed::Candidate>& candidates,
-                                              const seed::SearchInputs& inputs) const;
+                                              const seed::SearchInputs& inputs,
+                                              const seed::Refined& first) const;
+  /// Whether two transforms place the centre of `from`'s known cells within kRivalCells of each
+  /// other at rotations within 5°.
+  static bool samePlace(const GridTransform& a, const GridTransform& b,
+                        const seed::SearchInputs& inputs);
+  /// Whether a refined transform is refused for its own overlap, V, structure agreement or
+  /// entropy gap.
+  bool failsOnItsOwn(const seed::Refined& refined) const;
   /// Block 8's last steps and block 9's figures for the first candidate.
   seed::Refined refineBest(const std::vector<seed::Candidate>& candidates,
                            const seed::SearchInputs& inputs) const;

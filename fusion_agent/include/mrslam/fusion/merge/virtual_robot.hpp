@@ -5,8 +5,9 @@
 // skeleton (where a robot can be), move with the virtual robot's steps and are weighted by a
 // likelihood field of `to`'s walls. Clusters of converged particles give the virtual robot's pose
 // in `to` (T1) while its pose in `from` (T2) is known, so each is a hypothesis
-// T_to_from = T1 · T2⁻¹. Every hypothesis is fitted to the maps and verified (overlap, V, walls on
-// walls both ways, no rival as good elsewhere) before it is accepted.
+// T_to_from = T1 · T2⁻¹. The hypotheses are judged by the seed pipeline's own acceptance
+// (SeedMerger::judgeHypotheses: ±δ placement, ranking, rival check and every refusal rule), with
+// the seed merger's settings.
 
 #include <cstdint>
 #include <vector>
@@ -16,33 +17,24 @@
 
 #include "mrslam/common/config.hpp"
 #include "mrslam/fusion/merge/map_merger.hpp"
+#include "mrslam/fusion/merge/seed_merger.hpp"
 
 namespace mrslam::fusion {
 
 struct VirtualRobotSettings {
-  int beams = 120;                        ///< rays of a virtual scan over the full turn
-  double max_range_cells = 160.0;         ///< the virtual laser's reach (8 m at 5 cm)
-  int path_poses = 24;                    ///< virtual robot poses per walk
-  int path_step_cells = 8;                ///< skeleton cells between two poses of a walk
-  int walks = 12;                         ///< walks from different (seeded) skeleton cells
-  int particles = 4000;                   ///< particles of each localisation
-  double hit_sigma_cells = 1.5;           ///< σ of the likelihood field (distance to `to`'s walls)
-  double motion_sigma_cells = 0.7;        ///< σ of each particle's step, per step, cells
-  double motion_sigma_rad = 0.03;         ///< σ of each particle's turn, per step
-  double cluster_radius_cells = 5.0;      ///< particles this close form one cluster
-  double cluster_angle_rad = 0.15;        ///< ... and turned by less than this
-  int hypotheses_per_walk = 3;            ///< largest clusters taken from each walk
-  double min_verification_v = 0.9;        ///< V the fitted hypothesis must reach
-  double min_structure_agreement = 0.85;  ///< walls landing on walls, both ways
-  std::size_t min_overlap_cells = 1500;   ///< cells known in both maps at the hypothesis
-  double max_rival_share =
-      0.93;  ///< a distinct hypothesis with this share of the best's agr − dis: ambiguous
-  /// The best hypothesis turned by ±90° and 180° about its overlap is fitted within this
-  /// shift, m; scoring max_rival_share of the best or more makes the merge ambiguous.
-  double rotation_rival_shift_m = 1.0;
-  double fit_shift_m = 0.25;  ///< the fit searches shifts up to this far from a hypothesis
-  double fit_turn_rad = 2.0 * M_PI / 180.0;  ///< ... and turns
-  std::uint64_t seed = 1;                    ///< seed of every random draw
+  int beams = 120;                    ///< rays of a virtual scan over the full turn
+  double max_range_cells = 160.0;     ///< the virtual laser's reach (8 m at 5 cm)
+  int path_poses = 24;                ///< virtual robot poses per walk
+  int path_step_cells = 8;            ///< skeleton cells between two poses of a walk
+  int walks = 12;                     ///< walks from different (seeded) skeleton cells
+  int particles = 4000;               ///< particles of each localisation
+  double hit_sigma_cells = 1.5;       ///< σ of the likelihood field (distance to `to`'s walls)
+  double motion_sigma_cells = 0.7;    ///< σ of each particle's step, per step, cells
+  double motion_sigma_rad = 0.03;     ///< σ of each particle's turn, per step
+  double cluster_radius_cells = 5.0;  ///< particles this close form one cluster
+  double cluster_angle_rad = 0.15;    ///< ... and turned by less than this
+  int hypotheses_per_walk = 3;        ///< largest clusters taken from each walk
+  std::uint64_t seed = 1;             ///< seed of every random draw
 };
 
 /// Reads a `virtual:` section (keys as the fields); throws ConfigError for a bad value.
@@ -67,7 +59,9 @@ std::vector<Eigen::Vector2d> virtualScan(const GridMap& map, const CellPose& pos
 
 class VirtualRobotMerger : public MapMerger {
  public:
-  explicit VirtualRobotMerger(VirtualRobotSettings settings = {}) : settings_(settings) {}
+  explicit VirtualRobotMerger(VirtualRobotSettings settings = {},
+                              const SeedMergerSettings& judge = {})
+      : settings_(settings), judge_(judge) {}
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "virtual"; }
 
@@ -76,6 +70,7 @@ class VirtualRobotMerger : public MapMerger {
 
  private:
   VirtualRobotSettings settings_;
+  SeedMerger judge_;  ///< the seed pipeline's acceptance, for the hypotheses
 };
 
 }  // namespace mrslam::fusion

@@ -1,0 +1,80 @@
+#pragma once
+// The exhaustive merger: the exhaustive search's best distinct transforms (exhaustive_search.hpp)
+// judged by the seed pipeline's own acceptance (SeedMerger::judgeHypotheses: the ±δ placement,
+// ranking, rival check and every refusal rule of block 9), so that it accepts no transform the
+// seed pipeline would refuse had it proposed it. Its settings are the search's; the acceptance
+// is the seed merger's settings (the `seed:` section beside it in a merger config). With
+// `check_both_ways`, an accepted transform must also be accepted the other way (the inverse
+// hypotheses judged with `to` moved onto `from`) and agree with it within `agreement_cells` and
+// `agreement_deg`: a transform a few degrees off that the acceptance lets through one way is
+// seldom let through the other way at the same place. With `check_own_score`, the search's own
+// score (both ways, full resolution) must also peak within that agreement of the accepted
+// transform (looked for within ±own_score_turn_deg and ±own_score_shift_cells): two different
+// measures that agree on a low overlap's transform are seldom both wrong. With
+// `return_own_peak`, that peak is the transform returned. A peak that a turn of
+// `ambiguity_turn_deg` scores `max_turn_ambiguity` of or more is refused: the overlap does not
+// fix the rotation (a flat score over several degrees, where either measure may settle wrong).
+
+#include <string>
+#include <vector>
+
+#include "mrslam/common/config.hpp"
+#include "mrslam/fusion/merge/exhaustive_search.hpp"
+#include "mrslam/fusion/merge/seed_merger.hpp"
+
+namespace mrslam::fusion {
+
+struct ExhaustiveMergerSettings {
+  ExhaustiveSearchSettings search;
+  bool check_both_ways = true;      ///< the other way must accept the same transform
+  double agreement_cells = 2.0;     ///< largest shift between the two ways' transforms, cells
+  double agreement_deg = 1.0;       ///< largest turn between them, degrees
+  bool check_own_score = true;      ///< the search's own score must peak at the accepted transform
+  bool return_own_peak = true;      ///< return that peak (it settles the angle of small overlaps)
+  double own_score_turn_deg = 4.0;  ///< ... looked for within this turn
+  int own_score_shift_cells = 4;    ///< ... and this shift
+  /// The peak turned by ±ambiguity_turn_deg (with its best shift within ±ambiguity_shift_cells)
+  /// scoring this share of the peak or more: the rotation is not fixed, refused (1 or more: off).
+  double max_turn_ambiguity = 0.97;
+  double ambiguity_turn_deg = 3.0;  ///< the turn of that check, degrees
+  int ambiguity_shift_cells = 3;    ///< its shifts, cells
+};
+
+/// Reads the search's keys of an `exhaustive:` section (keys as the fields of
+/// ExhaustiveSearchSettings); throws ConfigError for a bad value.
+ExhaustiveSearchSettings loadExhaustiveSearchSettings(const Config& config);
+/// Reads an `exhaustive:` section: the search's keys and the merger's own.
+ExhaustiveMergerSettings loadExhaustiveMergerSettings(const Config& config);
+
+class ExhaustiveMerger : public MapMerger {
+ public:
+  explicit ExhaustiveMerger(ExhaustiveMergerSettings settings = {},
+                            const SeedMergerSettings& judge = {})
+      : settings_(settings), judge_(judge), classes_(judge.similarity) {}
+  MergeResult merge(const GridMap& from, const GridMap& to) override;
+  std::string name() const override { return "exhaustive"; }
+
+  /// The search's hypotheses, best first, before they are judged (for tests and tuning).
+  std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to) const;
+
+ private:
+  /// With check_both_ways: refuses `result` unless the other way accepts the same transform.
+  void checkTheOtherWay(const GridMap& from, const GridMap& to,
+                        const std::vector<GridTransform>& found, MergeResult& result);
+  /// With check_own_score: refuses `result` unless the search's score both ways peaks within
+  /// the agreement of the accepted transform.
+  void checkOwnScore(const GridMap& from, const GridMap& to, MergeResult& result) const;
+  /// Refuses `result` when the score both ways turned by ±ambiguity_turn_deg about `from`'s
+  /// known centre comes within max_turn_ambiguity of `peak`'s.
+  void refuseUnlessTurnFixed(const GridMap& from, const GridMap& to,
+                             const ExhaustiveHypothesis& peak, MergeResult& result) const;
+  /// Refuses `result` when `other` is farther from it than the agreement bars.
+  void refuseUnlessAgreeing(const GridMap& from, const GridTransform& other,
+                            const std::string& what, MergeResult& result) const;
+
+  ExhaustiveMergerSettings settings_;
+  SeedMerger judge_;
+  SimilaritySettings classes_;
+};
+
+}  // namespace mrslam::fusion

@@ -1,0 +1,190 @@
+#include "mrslam/fusion/merge/exhaustive_merger.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "mrslam/fusion/merge/overlap_score.hpp"
+
+namespace mrslam::fusion {
+
+namespace {
+
+/// The centre of the known cells of `map` (its grid centre when none is known).
+Eigen::Vector2d knownCentre(const GridMap& map) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  double count = 0.0;
+  for (int y = 0; y < map.geometry.height; ++y) {
+    for (int x = 0; x < map.geometry.width; ++x) {
+      if (map.at(x, y) != GridMap::kUnknown) {
+        sum += Eigen::Vector2d(x, y);
+        count += 1.0;
+      }
+    }
+  }
+  return count > 0.0 ? Eigen::Vector2d(sum / count)
+                     : Eigen::Vector2d(0.5 * map.geometry.width, 0.5 * map.geometry.height);
+}
+
+std::vector<GridTransform> inverses(const std::vector<GridTransform>& transforms) {
+  std::vector<GridTransform> result;
+  for (const GridTransform& T_to_from : transforms) {
+    result.push_back(T_to_from.inverse());
+  }
+  return result;
+}
+
+}  // namespace
+
+ExhaustiveMergerSettings loadExhaustiveMergerSettings(const Config& config) {
+  ExhaustiveMergerSettings s;
+  s.search = loadExhaustiveSearchSettings(config);
+  s.check_both_ways = config.getBool("check_both_ways", s.check_both_ways);
+  s.agreement_cells = config.getDouble("agreement_cells", s.agreement_cells, {0.0, 1000.0});
+  s.agreement_deg = config.getDouble("agreement_deg", s.agreement_deg, {0.0, 180.0});
+  s.check_own_score = config.getBool("check_own_score", s.check_own_score);
+  s.return_own_peak = config.getBool("return_own_peak", s.return_own_peak);
+  s.max_turn_ambiguity = config.getDouble("max_turn_ambiguity", s.max_turn_ambiguity, {0.0, 10.0});
+  s.ambiguity_turn_deg = config.getDouble("ambiguity_turn_deg", s.ambiguity_turn_deg, {0.0, 45.0});
+  s.ambiguity_shift_cells =
+      static_cast<int>(config.getInt("ambiguity_shift_cells", s.ambiguity_shift_cells, {0, 100}));
+  s.own_score_turn_deg = config.getDouble("own_score_turn_deg", s.own_score_turn_deg, {0.0, 45.0});
+  s.own_score_shift_cells =
+      static_cast<int>(config.getInt("own_score_shift_cells", s.own_score_shift_cells, {0, 100}));
+  return s;
+}
+
+ExhaustiveSearchSettings loadExhaustiveSearchSettings(const Config& config) {
+  ExhaustiveSearchSettings s;
+  s.cell_size = static_cast<int>(config.getInt("cell_size", s.cell_size, {1, 16}));
+  s.rotation_step_cells =
+      config.getDouble("rotation_step_cells", s.rotation_step_cells, {0.1, 10.0});
+  s.wall_sigma = config.getDouble("wall_sigma", s.wall_sigma, {0.1, 100.0});
+  s.wall_reach = config.getDouble("wall_reach", s.wall_reach, {0.0, 100.0});
+  s.free_penalty = config.getDouble("free_penalty", s.free_penalty, {0.0, 1000.0});
+  s.max_points = static_cast<int>(config.getInt("max_points", s.max_points, {1, 1000000}));
+  s.max_free_points =
+      static_cast<int>(config.getInt("max_free_points", s.max_free_points, {0, 1000000}));
+  s.free_weight = config.getDouble("free_weight", s.free_weight, {0.0, 1000.0});
+  s.conflict_penalty = config.getDouble("conflict_penalty", s.conflict_penalty, {0.0, 1000.0});
+  s.free_margin = static_cast<int>(config.getInt("free_margin", s.free_margin, {0, 100}));
+  s.depth = static_cast<int>(config.getInt("depth", s.depth, {0, 12}));
+  s.hypotheses = static_cast<int>(config.getInt("hypotheses", s.hypotheses, {1, 1000}));
+  s.min_score_share = config.getDouble("min_score_share", s.min_score_share, {0.0, 1.0});
+  s.min_best_share = config.getDouble("min_best_share", s.min_best_share, {0.0, 1.0});
+  s.distinct_cells = config.getDouble("distinct_cells", s.distinct_cells, {0.0, 10000.0});
+  s.distinct_deg = config.getDouble("distinct_deg", s.distinct_deg, {0.0, 180.0});
+  s.search_hypotheses =
+      static_cast<int>(config.getInt("search_hypotheses", s.search_hypotheses, {1, 1000}));
+  s.both_ways = config.getBool("both_ways", s.both_ways);
+  return s;
+}
+
+std::vector<GridTransform> ExhaustiveMerger::hypotheses(const GridMap& from,
+                                                        const GridMap& to) const {
+  std::vector<GridTransform> found;
+  for (const ExhaustiveHypothesis& hypothesis :
+       exhaustiveSearch(from, to, settings_.search, classes_)) {
+    found.push_back(hypothesis.T_to_from);
+  }
+  return found;
+}
+
+MergeResult ExhaustiveMerger::merge(const GridMap& from, const GridMap& to) {
+  MergeResult result;
+  result.method = name();
+  if (from.geometry.resolution_m != to.geometry.resolution_m) {
+    result.reason = "the maps' resolutions differ";
+    return result;
+  }
+  const std::vector<GridTransform> found = hypotheses(from, to);
+  if (found.empty()) {
+    result.reason = "exhaustive search: no hypothesis scores above the floor";
+    return result;
+  }
+  result = judge_.judgeHypotheses(from, to, found);
+  result.method = name();
+  if (!result.accepted) {
+    result.reason = "exhaustive search: " + result.reason;
+    return result;
+  }
+  if (settings_.check_own_score) {
+    checkOwnScore(from, to, result);
+  }
+  if (result.accepted && settings_.check_both_ways) {
+    checkTheOtherWay(from, to, found, result);
+  }
+  return result;
+}
+
+void ExhaustiveMerger::refuseUnlessAgreeing(const GridMap& from, const GridTransform& other,
+                                            const std::string& what, MergeResult& result) const {
+  const Eigen::Vector2d centre = knownCentre(from);
+  const double cells = (other.apply(centre) - result.T_to_from.apply(centre)).norm();
+  const double deg =
+      std::abs(std::remainder(other.theta_rad - result.T_to_from.theta_rad, 2.0 * M_PI)) * 180.0 /
+      M_PI;
+  if (cells > settings_.agreement_cells || deg > settings_.agreement_deg) {
+    std::ostringstream reason;
+    reason << "exhaustive search: " << what << " lies " << cells << " cells and " << deg
+           << " degrees from the accepted transform";
+    result.accepted = false;
+    result.reason = reason.str();
+  }
+}
+
+void ExhaustiveMerger::refuseUnlessTurnFixed(const GridMap& from, const GridMap& to,
+                                             const ExhaustiveHypothesis& peak,
+                                             MergeResult& result) const {
+  const Eigen::Vector2d centre = knownCentre(from);
+  const Eigen::Vector2d landed = peak.T_to_from.apply(centre);
+  double largest = 0.0;
+  for (const double sign : {-1.0, 1.0}) {
+    GridTransform turned = peak.T_to_from;
+    turned.theta_rad += sign * settings_.ambiguity_turn_deg * M_PI / 180.0;
+    turned.t_cells += landed - turned.apply(centre);
+    const ExhaustiveHypothesis rival = bestScoreNear(
+        from, to, turned, 0.0, 0, settings_.ambiguity_shift_cells, settings_.search, classes_);
+    largest = std::max(largest, rival.score);
+  }
+  const double share = peak.score > 0.0 ? largest / peak.score : 1.0;
+  if (share >= settings_.max_turn_ambiguity) {
+    std::ostringstream reason;
+    reason << "exhaustive search: the overlap does not fix the rotation: turned by "
+           << settings_.ambiguity_turn_deg << " degrees it scores " << share << " of the best";
+    result.accepted = false;
+    result.reason = reason.str();
+  }
+}
+
+void ExhaustiveMerger::checkOwnScore(const GridMap& from, const GridMap& to,
+                                     MergeResult& result) const {
+  constexpr int kTurnSteps = 8;
+  const ExhaustiveHypothesis best =
+      bestScoreNear(from, to, result.T_to_from, settings_.own_score_turn_deg * M_PI / 180.0,
+                    kTurnSteps, settings_.own_score_shift_cells, settings_.search, classes_);
+  refuseUnlessAgreeing(from, best.T_to_from, "the search's own score peaks elsewhere: its best",
+                       result);
+  if (result.accepted && settings_.max_turn_ambiguity < 1.0) {
+    refuseUnlessTurnFixed(from, to, best, result);
+  }
+  if (result.accepted && settings_.return_own_peak) {
+    const OverlapScore overlap = scoreOverlap(from, to, best.T_to_from);
+    result.T_to_from = best.T_to_from;
+    result.verification = overlap.verification();
+    result.entropy = overlap.entropy_bits;
+  }
+}
+
+void ExhaustiveMerger::checkTheOtherWay(const GridMap& from, const GridMap& to,
+                                        const std::vector<GridTransform>& found,
+                                        MergeResult& result) {
+  const MergeResult other = judge_.judgeHypotheses(to, from, inverses(found));
+  if (!other.accepted) {
+    result.accepted = false;
+    result.reason = "exhaustive search: refused the other way: " + other.reason;
+    return;
+  }
+  refuseUnlessAgreeing(from, other.T_to_from.inverse(), "the other way's transform", result);
+}
+
+}  // namespace mrslam::fusion

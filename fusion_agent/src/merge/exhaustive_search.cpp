@@ -1,0 +1,608 @@
+#include "mrslam/fusion/merge/exhaustive_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace mrslam::fusion {
+
+namespace {
+
+enum class GridClass : std::uint8_t { kUnknown = 0, kFree = 1, kWall = 2 };
+
+/// A map on the search grid: one class per grid cell, row-major.
+struct SearchGrid {
+  int width = 0;
+  int height = 0;
+  std::vector<GridClass> classes;
+  GridClass at(int x, int y) const {
+    return classes[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                   static_cast<std::size_t>(x)];
+  }
+};
+
+SearchGrid toSearchGrid(const GridMap& map, int cell_size, const SimilaritySettings& classes) {
+  SearchGrid grid;
+  grid.width = (map.geometry.width + cell_size - 1) / cell_size;
+  grid.height = (map.geometry.height + cell_size - 1) / cell_size;
+  grid.classes.assign(static_cast<std::size_t>(grid.width) * grid.height, GridClass::kUnknown);
+  for (int y = 0; y < map.geometry.height; ++y) {
+    for (int x = 0; x < map.geometry.width; ++x) {
+      const int value = map.at(x, y);
+      GridClass& cell = grid.classes[static_cast<std::size_t>(y / cell_size) * grid.width +
+                                     static_cast<std::size_t>(x / cell_size)];
+      if (value >= classes.occupied_threshold) {
+        cell = GridClass::kWall;
+      } else if (value >= 0 && value <= classes.free_threshold && cell == GridClass::kUnknown) {
+        cell = GridClass::kFree;
+      }
+    }
+  }
+  return grid;
+}
+
+/// Step 2: the walls and the free cells of `from` about the walls' centroid, each an even
+/// sample.
+struct PointSet {
+  std::vector<Eigen::Vector2d> walls;  ///< grid cells relative to `centroid`
+  std::vector<Eigen::Vector2d> free;   ///< the same
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  double radius = 0.0;
+};
+
+/// Whether a wall lies within `reach` grid cells (square) of (x, y).
+bool nearWall(const SearchGrid& grid, int x, int y, int reach) {
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const int nx = x + dx;
+      const int ny = y + dy;
+      if (nx >= 0 && ny >= 0 && nx < grid.width && ny < grid.height &&
+          grid.at(nx, ny) == GridClass::kWall) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+/// An even sample of the cells of class `wanted`; free cells only away from walls (a cell of
+/// misalignment must not put them on the other map's walls).
+std::vector<Eigen::Vector2d> cellsOf(const SearchGrid& grid, GridClass wanted, int max_count,
+                                     int wall_margin) {
+  std::vector<Eigen::Vector2d> all;
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      if (grid.at(x, y) == wanted &&
+          (wanted == GridClass::kWall || !nearWall(grid, x, y, wall_margin))) {
+        all.emplace_back(x, y);
+      }
+    }
+  }
+  const std::size_t kept = std::min(all.size(), static_cast<std::size_t>(max_count));
+  std::vector<Eigen::Vector2d> sample;
+  for (std::size_t i = 0; i < kept; ++i) {
+    sample.push_back(all[i * all.size() / kept]);
+  }
+  return sample;
+}
+
+PointSet pointSet(const SearchGrid& grid, const ExhaustiveSearchSettings& settings) {
+  PointSet set;
+  set.walls = cellsOf(grid, GridClass::kWall, settings.max_points, 0);
+  if (set.walls.empty()) {
+    return set;
+  }
+  set.free = cellsOf(grid, GridClass::kFree, settings.max_free_points, settings.free_margin);
+  for (const Eigen::Vector2d& wall : set.walls) {
+    set.centroid += wall;
+  }
+  set.centroid = (set.centroid / static_cast<double>(set.walls.size())).array().round();
+  for (std::vector<Eigen::Vector2d>* points : {&set.walls, &set.free}) {
+    for (Eigen::Vector2d& point : *points) {
+      point -= set.centroid;
+      set.radius = std::max(set.radius, point.norm());
+    }
+  }
+  return set;
+}
+
+/// Step 1 and the bounds of step 4: the value grid of `to` padded by `pad` grid cells of
+/// unknown on every side, and its max-pooled versions.
+struct ValuePyramid {
+  int pad = 0;
+  int stride = 0;
+  int rows = 0;
+  std::vector<std::vector<float>> walls;  ///< level h: max over 2^h × 2^h windows (low corner)
+  std::vector<std::vector<float>> free;   ///< the same for `from`'s free cells
+};
+
+cv::Mat distanceToWalls(const SearchGrid& grid) {
+  cv::Mat not_wall(grid.height, grid.width, CV_8U);
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      not_wall.at<std::uint8_t>(y, x) = grid.at(x, y) == GridClass::kWall ? 0 : 255;
+    }
+  }
+  cv::Mat distance;
+  cv::distanceTransform(not_wall, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  return distance;
+}
+
+/// What a free cell of `from` scores on each cell of `to`.
+std::vector<float> freeValueGrid(const SearchGrid& grid, int pad, int stride, int rows,
+                                 const ExhaustiveSearchSettings& settings) {
+  std::vector<float> values(static_cast<std::size_t>(stride) * rows, 0.0f);
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      const GridClass cell = grid.at(x, y);
+      values[static_cast<std::size_t>(y + pad) * stride + static_cast<std::size_t>(x + pad)] =
+          cell == GridClass::kFree
+              ? static_cast<float>(settings.free_weight)
+              : (cell == GridClass::kWall ? -static_cast<float>(settings.conflict_penalty) : 0.0f);
+    }
+  }
+  return values;
+}
+
+/// What a wall of `from` scores on each cell of `to`.
+std::vector<float> valueGrid(const SearchGrid& grid, int pad, int stride, int rows,
+                             const ExhaustiveSearchSettings& settings) {
+  const cv::Mat distance = distanceToWalls(grid);
+  std::vector<float> values(static_cast<std::size_t>(stride) * rows, 0.0f);
+  const double two_sigma_sq = 2.0 * settings.wall_sigma * settings.wall_sigma;
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      const double d = distance.at<float>(y, x);
+      float value = 0.0f;
+      if (d <= settings.wall_reach) {
+        value = static_cast<float>(std::exp(-d * d / two_sigma_sq));
+      } else if (grid.at(x, y) == GridClass::kFree) {
+        value = -static_cast<float>(settings.free_penalty);
+      }
+      values[static_cast<std::size_t>(y + pad) * stride + static_cast<std::size_t>(x + pad)] =
+          value;
+    }
+  }
+  return values;
+}
+
+std::vector<float> maxPooled(const std::vector<float>& finer, int stride, int rows, int step) {
+  std::vector<float> coarser(finer.size(), 0.0f);
+  for (int y = 0; y < rows; ++y) {
+    for (int x = 0; x < stride; ++x) {
+      float best = finer[static_cast<std::size_t>(y) * stride + x];
+      const bool right = x + step < stride;
+      const bool up = y + step < rows;
+      if (right) {
+        best = std::max(best, finer[static_cast<std::size_t>(y) * stride + x + step]);
+      }
+      if (up) {
+        best = std::max(best, finer[static_cast<std::size_t>(y + step) * stride + x]);
+      }
+      if (right && up) {
+        best = std::max(best, finer[static_cast<std::size_t>(y + step) * stride + x + step]);
+      }
+      coarser[static_cast<std::size_t>(y) * stride + x] = best;
+    }
+  }
+  return coarser;
+}
+
+ValuePyramid valuePyramid(const SearchGrid& grid, int pad,
+                          const ExhaustiveSearchSettings& settings) {
+  ValuePyramid pyramid;
+  pyramid.pad = pad;
+  pyramid.stride = grid.width + 2 * pad;
+  pyramid.rows = grid.height + 2 * pad;
+  pyramid.walls.push_back(valueGrid(grid, pad, pyramid.stride, pyramid.rows, settings));
+  pyramid.free.push_back(freeValueGrid(grid, pad, pyramid.stride, pyramid.rows, settings));
+  for (int h = 1; h <= settings.depth; ++h) {
+    pyramid.walls.push_back(
+        maxPooled(pyramid.walls.back(), pyramid.stride, pyramid.rows, 1 << (h - 1)));
+    pyramid.free.push_back(
+        maxPooled(pyramid.free.back(), pyramid.stride, pyramid.rows, 1 << (h - 1)));
+  }
+  return pyramid;
+}
+
+/// Step 3: one rotation's turned points as offsets into the pyramid's rows.
+struct Rotation {
+  double theta = 0.0;
+  std::vector<std::ptrdiff_t> walls;
+  std::vector<std::ptrdiff_t> free;
+};
+
+std::vector<std::ptrdiff_t> turnedOffsets(const std::vector<Eigen::Vector2d>& points, double theta,
+                                          int stride) {
+  const double c = std::cos(theta);
+  const double s = std::sin(theta);
+  std::vector<std::ptrdiff_t> offsets;
+  offsets.reserve(points.size());
+  for (const Eigen::Vector2d& p : points) {
+    const auto x = static_cast<std::ptrdiff_t>(std::lround(c * p.x() - s * p.y()));
+    const auto y = static_cast<std::ptrdiff_t>(std::lround(s * p.x() + c * p.y()));
+    offsets.push_back(y * stride + x);
+  }
+  return offsets;
+}
+
+std::vector<Rotation> rotations(const PointSet& set, int stride, double step_cells) {
+  const double step = set.radius > step_cells ? step_cells / set.radius : M_PI / 2.0;
+  const int count = std::max(4, static_cast<int>(std::ceil(2.0 * M_PI / step)));
+  std::vector<Rotation> all(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k) {
+    Rotation& rotation = all[static_cast<std::size_t>(k)];
+    rotation.theta = 2.0 * M_PI * k / count;
+    rotation.walls = turnedOffsets(set.walls, rotation.theta, stride);
+    rotation.free = turnedOffsets(set.free, rotation.theta, stride);
+  }
+  return all;
+}
+
+/// A node of the branch and bound: rotation, the low corner of its translations (grid cells of
+/// `to`, where `from`'s centroid lands), its level and bound.
+struct Node {
+  int rotation = 0;
+  int tx = 0;
+  int ty = 0;
+  int level = 0;
+  double bound = 0.0;
+};
+
+/// The best distinct leaves found so far, best first (step 5).
+class KeptLeaves {
+ public:
+  KeptLeaves(const ExhaustiveSearchSettings& settings, double floor)
+      : count_(static_cast<std::size_t>(settings.search_hypotheses)),
+        cells_(settings.distinct_cells),
+        rad_(settings.distinct_deg * M_PI / 180.0),
+        floor_(floor),
+        best_share_(settings.min_best_share) {}
+  /// The score a leaf must beat: the last kept one's when all are found, and never less than
+  /// the floor or min_best_share of the best.
+  double threshold() const {
+    return kept_.size() < count_ ? floor() : std::max(floor(), kept_.back().score);
+  }
+  /// `place`: where `from`'s centroid lands in `to`, map cells.
+  void offer(const ExhaustiveHypothesis& leaf, const Eigen::Vector2d& place);
+  std::vector<ExhaustiveHypothesis> best() const {
+    std::vector<ExhaustiveHypothesis> result;
+    for (const Entry& entry : kept_) {
+      result.push_back(entry.hypothesis);
+    }
+    return result;
+  }
+
+ private:
+  struct Entry {
+    ExhaustiveHypothesis hypothesis;
+    Eigen::Vector2d place;
+    double score = 0.0;
+  };
+  double floor() const {
+    return kept_.empty() ? floor_ : std::max(floor_, best_share_ * kept_.front().score);
+  }
+  bool alike(const Entry& entry, const ExhaustiveHypothesis& leaf,
+             const Eigen::Vector2d& place) const {
+    return std::abs(std::remainder(entry.hypothesis.T_to_from.theta_rad - leaf.T_to_from.theta_rad,
+                                   2.0 * M_PI)) < rad_ &&
+           (entry.place - place).norm() < cells_;
+  }
+  std::size_t count_;
+  double cells_;
+  double rad_;
+  double floor_;
+  double best_share_;
+  std::vector<Entry> kept_;
+};
+
+void KeptLeaves::offer(const ExhaustiveHypothesis& leaf, const Eigen::Vector2d& place) {
+  if (leaf.score <= threshold()) {
+    return;
+  }
+  for (const Entry& entry : kept_) {
+    if (alike(entry, leaf, place) && entry.score >= leaf.score) {
+      return;
+    }
+  }
+  kept_.erase(std::remove_if(kept_.begin(), kept_.end(),
+                             [&](const Entry& entry) { return alike(entry, leaf, place); }),
+              kept_.end());
+  const Entry entry{leaf, place, leaf.score};
+  kept_.insert(std::upper_bound(kept_.begin(), kept_.end(), entry,
+                                [](const Entry& a, const Entry& b) { return a.score > b.score; }),
+               entry);
+  while (kept_.size() > count_ || (!kept_.empty() && kept_.back().score <= floor())) {
+    kept_.pop_back();
+  }
+}
+
+float sumAt(const float* base, const std::vector<std::ptrdiff_t>& offsets) {
+  float sum = 0.0f;
+  for (const std::ptrdiff_t offset : offsets) {
+    sum += base[offset];
+  }
+  return sum;
+}
+
+class BranchAndBound {
+ public:
+  BranchAndBound(const ValuePyramid& pyramid, const std::vector<Rotation>& rotations,
+                 const PointSet& set, int cell_size, KeptLeaves& kept)
+      : pyramid_(pyramid), rotations_(rotations), set_(set), cell_size_(cell_size), kept_(kept) {}
+
+  double bound(int rotation, int tx, int ty, int level) const {
+    const std::ptrdiff_t corner =
+        static_cast<std::ptrdiff_t>(ty + pyramid_.pad) * pyramid_.stride + (tx + pyramid_.pad);
+    const Rotation& turned = rotations_[static_cast<std::size_t>(rotation)];
+    const auto h = static_cast<std::size_t>(level);
+    return sumAt(pyramid_.walls[h].data() + corner, turned.walls) +
+           sumAt(pyramid_.free[h].data() + corner, turned.free);
+  }
+
+  void expand(const Node& node) {
+    if (node.bound <= kept_.threshold()) {
+      return;
+    }
+    if (node.level == 0) {
+      offerLeaf(node);
+      return;
+    }
+    const int half = 1 << (node.level - 1);
+    Node children[4];
+    for (int i = 0; i < 4; ++i) {
+      Node& child = children[i];
+      child = {node.rotation, node.tx + (i & 1) * half, node.ty + (i >> 1) * half, node.level - 1,
+               0.0};
+      child.bound = bound(child.rotation, child.tx, child.ty, child.level);
+    }
+    std::sort(std::begin(children), std::end(children),
+              [](const Node& a, const Node& b) { return a.bound > b.bound; });
+    for (const Node& child : children) {
+      expand(child);
+    }
+  }
+
+ private:
+  /// The map-cell transform of a leaf: grid cell g of `from` lands on R (g - centroid) + t.
+  void offerLeaf(const Node& node) {
+    const double theta = rotations_[static_cast<std::size_t>(node.rotation)].theta;
+    const double c = std::cos(theta);
+    const double s = std::sin(theta);
+    const double h = 0.5 * (cell_size_ - 1);
+    const Eigen::Vector2d anchor = Eigen::Vector2d::Constant(h) + cell_size_ * set_.centroid;
+    ExhaustiveHypothesis leaf;
+    leaf.T_to_from.theta_rad = std::remainder(theta, 2.0 * M_PI);
+    const Eigen::Vector2d place =
+        cell_size_ * Eigen::Vector2d(node.tx, node.ty) + Eigen::Vector2d::Constant(h);
+    leaf.T_to_from.t_cells =
+        place - Eigen::Vector2d(c * anchor.x() - s * anchor.y(), s * anchor.x() + c * anchor.y());
+    leaf.score = node.bound;
+    kept_.offer(leaf, place);
+  }
+
+  const ValuePyramid& pyramid_;
+  const std::vector<Rotation>& rotations_;
+  const PointSet& set_;
+  int cell_size_;
+  KeptLeaves& kept_;
+};
+
+/// The best `score` over turns of T_to_from about `pivot` within ±`turn` (in `steps` steps a
+/// side) and shifts within ±`shift` cells (T_to_from itself when none scores more).
+template <typename Score>
+ExhaustiveHypothesis bestNear(const Score& score, const GridTransform& T_to_from,
+                              const Eigen::Vector2d& pivot, double turn, int steps, int shift) {
+  ExhaustiveHypothesis best{T_to_from, score(T_to_from)};
+  const Eigen::Vector2d landed = T_to_from.apply(pivot);
+  for (int k = -steps; k <= steps; ++k) {
+    GridTransform turned;
+    turned.theta_rad = T_to_from.theta_rad + turn * k / std::max(1, steps);
+    const double c = std::cos(turned.theta_rad);
+    const double s = std::sin(turned.theta_rad);
+    const Eigen::Vector2d base =
+        landed - Eigen::Vector2d(c * pivot.x() - s * pivot.y(), s * pivot.x() + c * pivot.y());
+    for (int dy = -shift; dy <= shift; ++dy) {
+      for (int dx = -shift; dx <= shift; ++dx) {
+        turned.t_cells = base + Eigen::Vector2d(dx, dy);
+        const double value = score(turned);
+        if (value > best.score) {
+          best = {turned, value};
+        }
+      }
+    }
+  }
+  best.T_to_from.theta_rad = std::remainder(best.T_to_from.theta_rad, 2.0 * M_PI);
+  return best;
+}
+
+/// Step 6: the score at full resolution (one grid cell a map cell, σ, reach and margin scaled
+/// alike), for the last steps of a hypothesis.
+class FineScorer {
+ public:
+  FineScorer(const GridMap& from, const GridMap& to, const ExhaustiveSearchSettings& settings,
+             const SimilaritySettings& classes)
+      : grid_to_(toSearchGrid(to, 1, classes)) {
+    ExhaustiveSearchSettings fine = settings;
+    const int cell_size = std::max(1, settings.cell_size);
+    fine.cell_size = 1;
+    fine.wall_sigma *= cell_size;
+    fine.wall_reach *= cell_size;
+    fine.free_margin = std::max(1, settings.free_margin * cell_size);
+    walls_ = valueGrid(grid_to_, 0, grid_to_.width, grid_to_.height, fine);
+    free_ = freeValueGrid(grid_to_, 0, grid_to_.width, grid_to_.height, fine);
+    points_ = pointSet(toSearchGrid(from, 1, classes), fine);
+  }
+
+  double score(const GridTransform& T_to_from) const {
+    return sum(T_to_from, points_.walls, walls_) + sum(T_to_from, points_.free, free_);
+  }
+
+  /// The best score over turns within ±`turn` (in `steps` steps a side) about `from`'s walls'
+  /// centroid and shifts within ±`shift` cells.
+  ExhaustiveHypothesis refine(const GridTransform& T_to_from, double turn, int steps,
+                              int shift) const {
+    return bestNear([this](const GridTransform& T) { return score(T); }, T_to_from,
+                    points_.centroid, turn, steps, shift);
+  }
+  const Eigen::Vector2d& pivot() const { return points_.centroid; }
+
+ private:
+  double sum(const GridTransform& T_to_from, const std::vector<Eigen::Vector2d>& points,
+             const std::vector<float>& values) const {
+    const double c = std::cos(T_to_from.theta_rad);
+    const double s = std::sin(T_to_from.theta_rad);
+    double total = 0.0;
+    for (const Eigen::Vector2d& point : points) {
+      const Eigen::Vector2d p = point + points_.centroid;
+      const long x = std::lround(c * p.x() - s * p.y() + T_to_from.t_cells.x());
+      const long y = std::lround(s * p.x() + c * p.y() + T_to_from.t_cells.y());
+      if (x >= 0 && y >= 0 && x < grid_to_.width && y < grid_to_.height) {
+        total += values[static_cast<std::size_t>(y) * grid_to_.width + static_cast<std::size_t>(x)];
+      }
+    }
+    return total;
+  }
+
+  SearchGrid grid_to_;
+  std::vector<float> walls_;
+  std::vector<float> free_;
+  PointSet points_;
+};
+
+/// Step 6 for every hypothesis, best first again.
+std::vector<ExhaustiveHypothesis> refined(const std::vector<ExhaustiveHypothesis>& leaves,
+                                          const FineScorer& scorer, double rotation_step,
+                                          int cell_size) {
+  std::vector<ExhaustiveHypothesis> result;
+  for (const ExhaustiveHypothesis& leaf : leaves) {
+    const ExhaustiveHypothesis coarse = scorer.refine(leaf.T_to_from, rotation_step, 4, cell_size);
+    result.push_back(scorer.refine(coarse.T_to_from, 0.25 * rotation_step, 2, 1));
+  }
+  std::stable_sort(result.begin(), result.end(),
+                   [](const ExhaustiveHypothesis& a, const ExhaustiveHypothesis& b) {
+                     return a.score > b.score;
+                   });
+  return result;
+}
+
+/// Steps 1-6 one way: the B&B's best distinct leaves of `from` onto `to`, refined.
+std::vector<ExhaustiveHypothesis> searchOneWay(const GridMap& from, const GridMap& to,
+                                               const ExhaustiveSearchSettings& settings,
+                                               const SimilaritySettings& classes) {
+  const int cell_size = std::max(1, settings.cell_size);
+  const SearchGrid grid_to = toSearchGrid(to, cell_size, classes);
+  const PointSet set = pointSet(toSearchGrid(from, cell_size, classes), settings);
+  if (set.walls.empty() || std::none_of(grid_to.classes.begin(), grid_to.classes.end(),
+                                        [](GridClass cell) { return cell == GridClass::kWall; })) {
+    return {};
+  }
+  const int reach = static_cast<int>(std::ceil(set.radius)) + 1;
+  const int top = 1 << settings.depth;
+  const ValuePyramid pyramid = valuePyramid(grid_to, 2 * reach + top + 1, settings);
+  const std::vector<Rotation> turns = rotations(set, pyramid.stride, settings.rotation_step_cells);
+  KeptLeaves kept(settings, settings.min_score_share * static_cast<double>(set.walls.size()));
+  BranchAndBound search(pyramid, turns, set, cell_size, kept);
+  std::vector<Node> nodes;
+  for (int k = 0; k < static_cast<int>(turns.size()); ++k) {
+    for (int ty = -reach; ty < grid_to.height + reach; ty += top) {
+      for (int tx = -reach; tx < grid_to.width + reach; tx += top) {
+        nodes.push_back({k, tx, ty, settings.depth, search.bound(k, tx, ty, settings.depth)});
+      }
+    }
+  }
+  std::sort(nodes.begin(), nodes.end(),
+            [](const Node& a, const Node& b) { return a.bound > b.bound; });
+  for (const Node& node : nodes) {
+    if (node.bound <= kept.threshold()) {
+      break;
+    }
+    search.expand(node);
+  }
+  return refined(kept.best(), FineScorer(from, to, settings, classes),
+                 settings.rotation_step_cells / std::max(set.radius, 1.0), cell_size);
+}
+
+/// The score of step 7: both ways.
+class BothWays {
+ public:
+  BothWays(const GridMap& from, const GridMap& to, const ExhaustiveSearchSettings& settings,
+           const SimilaritySettings& classes)
+      : forward_(from, to, settings, classes), backward_(to, from, settings, classes) {}
+  double score(const GridTransform& T_to_from) const {
+    return forward_.score(T_to_from) + backward_.score(T_to_from.inverse());
+  }
+  /// The best transform by score() near T_to_from: turns within ±turn in `steps` steps a side,
+  /// shifts within ±shift cells, then the same at a quarter of the turn and ±1 cell.
+  ExhaustiveHypothesis refine(const GridTransform& T_to_from, double turn, int steps,
+                              int shift) const {
+    const auto both = [this](const GridTransform& T) { return score(T); };
+    const ExhaustiveHypothesis coarse =
+        bestNear(both, T_to_from, forward_.pivot(), turn, steps, shift);
+    return bestNear(both, coarse.T_to_from, forward_.pivot(), 0.25 * turn, steps, 1);
+  }
+
+ private:
+  FineScorer forward_;
+  FineScorer backward_;
+};
+
+/// Step 7: the `count` best by the score both ways, no two alike.
+std::vector<ExhaustiveHypothesis> bestBothWays(std::vector<ExhaustiveHypothesis> all,
+                                               const BothWays& scorer, const GridMap& from,
+                                               const ExhaustiveSearchSettings& settings) {
+  for (ExhaustiveHypothesis& hypothesis : all) {
+    hypothesis.score = scorer.score(hypothesis.T_to_from);
+  }
+  std::stable_sort(all.begin(), all.end(),
+                   [](const ExhaustiveHypothesis& a, const ExhaustiveHypothesis& b) {
+                     return a.score > b.score;
+                   });
+  const Eigen::Vector2d centre(0.5 * from.geometry.width, 0.5 * from.geometry.height);
+  std::vector<ExhaustiveHypothesis> kept;
+  for (const ExhaustiveHypothesis& candidate : all) {
+    const bool alike = std::any_of(kept.begin(), kept.end(), [&](const auto& other) {
+      return std::abs(std::remainder(candidate.T_to_from.theta_rad - other.T_to_from.theta_rad,
+                                     2.0 * M_PI)) < settings.distinct_deg * M_PI / 180.0 &&
+             (candidate.T_to_from.apply(centre) - other.T_to_from.apply(centre)).norm() <
+                 settings.distinct_cells;
+    });
+    if (!alike && static_cast<int>(kept.size()) < settings.hypotheses) {
+      kept.push_back(candidate);
+    }
+  }
+  return kept;
+}
+
+}  // namespace
+
+double exhaustiveScore(const GridMap& from, const GridMap& to, const GridTransform& T_to_from,
+                       const ExhaustiveSearchSettings& settings,
+                       const SimilaritySettings& classes) {
+  return BothWays(from, to, settings, classes).score(T_to_from);
+}
+
+ExhaustiveHypothesis bestScoreNear(const GridMap& from, const GridMap& to,
+                                   const GridTransform& T_to_from, double turn_rad, int turn_steps,
+                                   int shift_cells, const ExhaustiveSearchSettings& settings,
+                                   const SimilaritySettings& classes) {
+  return BothWays(from, to, settings, classes).refine(T_to_from, turn_rad, turn_steps, shift_cells);
+}
+
+std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const GridMap& to,
+                                                   const ExhaustiveSearchSettings& settings,
+                                                   const SimilaritySettings& classes) {
+  std::vector<ExhaustiveHypothesis> all = searchOneWay(from, to, settings, classes);
+  if (settings.both_ways) {
+    for (ExhaustiveHypothesis& reverse : searchOneWay(to, from, settings, classes)) {
+      reverse.T_to_from = reverse.T_to_from.inverse();
+      all.push_back(reverse);
+    }
+  }
+  if (all.empty()) {
+    return {};
+  }
+  return bestBothWays(std::move(all), BothWays(from, to, settings, classes), from, settings);
+}
+
+}  // namespace mrslam::fusion
