@@ -90,21 +90,9 @@ std::vector<GridTransform> ExhaustiveMerger::hypotheses(const GridMap& from,
 }
 
 MergeResult ExhaustiveMerger::merge(const GridMap& from, const GridMap& to) {
-  MergeResult result;
-  result.method = name();
-  if (from.geometry.resolution_m != to.geometry.resolution_m) {
-    result.reason = "the maps' resolutions differ";
-    return result;
-  }
   const std::vector<GridTransform> found = hypotheses(from, to);
-  if (found.empty()) {
-    result.reason = "exhaustive search: no hypothesis scores above the floor";
-    return result;
-  }
-  result = judge_.judgeHypotheses(from, to, found);
-  result.method = name();
+  MergeResult result = judgeFoundHypotheses(judge_, from, to, found, name(), "exhaustive search");
   if (!result.accepted) {
-    result.reason = "exhaustive search: " + result.reason;
     return result;
   }
   if (settings_.check_own_score) {

@@ -380,4 +380,22 @@ std::string SeedMerger::refusal(const seed::Refined& refined) const {
   return "";
 }
 
+MergeResult judgeFoundHypotheses(SeedMerger& judge, const GridMap& from, const GridMap& to,
+                                 const std::vector<GridTransform>& found, const std::string& method,
+                                 const std::string& what) {
+  MergeResult result;
+  if (from.geometry.resolution_m != to.geometry.resolution_m) {
+    result.reason = "the maps' resolutions differ";
+  } else if (found.empty()) {
+    result.reason = what + ": no hypothesis";
+  } else {
+    result = judge.judgeHypotheses(from, to, found);
+    if (!result.accepted) {
+      result.reason = what + ": " + result.reason;
+    }
+  }
+  result.method = method;
+  return result;
+}
+
 }  // namespace mrslam::fusion

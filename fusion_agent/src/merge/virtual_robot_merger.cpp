@@ -28,23 +28,8 @@ VirtualRobotSettings loadVirtualRobotSettings(const Config& config) {
 }
 
 MergeResult VirtualRobotMerger::merge(const GridMap& from, const GridMap& to) {
-  MergeResult result;
-  result.method = name();
-  if (from.geometry.resolution_m != to.geometry.resolution_m) {
-    result.reason = "the maps' resolutions differ";
-    return result;
-  }
-  const std::vector<GridTransform> found = hypotheses(from, to);
-  if (found.empty()) {
-    result.reason = "virtual robot: no skeleton walk or no hypothesis";
-    return result;
-  }
-  result = judge_.judgeHypotheses(from, to, found);
-  result.method = name();
-  if (!result.accepted) {
-    result.reason = "virtual robot: " + result.reason;
-  }
-  return result;
+  return judgeFoundHypotheses(judge_, from, to, hypotheses(from, to), name(),
+                              "virtual robot (skeleton walks)");
 }
 
 }  // namespace mrslam::fusion

@@ -231,4 +231,11 @@ class SeedMerger : public MapMerger {
   SeedMergeTimings timings_;
 };
 
+/// The result of a merger whose hypotheses (`found`) are judged by `judge`'s acceptance
+/// (SeedMerger::judgeHypotheses): refused when the maps' resolutions differ or nothing was found;
+/// `method` is `method`, a refusal's reason starts with `what` (the hypotheses' source).
+MergeResult judgeFoundHypotheses(SeedMerger& judge, const GridMap& from, const GridMap& to,
+                                 const std::vector<GridTransform>& found, const std::string& method,
+                                 const std::string& what);
+
 }  // namespace mrslam::fusion
