@@ -2,9 +2,13 @@
 // Known-answer crop pairs of the shared maps, cut as `mrslam merge-cases` cuts them, for the seed
 // merger's tests of single cases (the same case numbers as its --json --details output).
 
+#include <gtest/gtest.h>
+
+#include <cmath>
 #include <string>
 
 #include "mrslam/common/map_loaders.hpp"
+#include "mrslam/fusion/merge/map_merger.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
 #include "test_data.hpp"
 
@@ -23,6 +27,18 @@ inline MergeCase cut(const CropPair& pair) {
   MergeCase merge_case = makeCase(source, pair.a, source, pair.b);
   merge_case.id = pair.case_id;
   return merge_case;
+}
+
+/// Merges the pair's crops with `merger`, expecting an accepted transform within 2 cells and 1°
+/// of the truth; returns the result for further checks.
+inline MergeResult expectMergedWithinTwoCellsAndOneDegree(const CropPair& pair, MapMerger& merger) {
+  const MergeCase merge_case = cut(pair);
+  const MergeResult result = merger.merge(merge_case.a, merge_case.b);
+  const CaseError error = caseError(merge_case, result.T_to_from);
+  EXPECT_TRUE(result.accepted) << "case " << pair.case_id << ": " << result.reason;
+  EXPECT_TRUE(isCorrect(error)) << "case " << pair.case_id << ": " << error.distance_cells
+                                << " cells, " << error.angle_rad * 180.0 / M_PI << "°";
+  return result;
 }
 
 }  // namespace mrslam::fusion::merge_test

@@ -108,14 +108,10 @@ TEST(MergeSeedFreeAgreementTest, CropsFoundByFreeAgreementMergeWithinTwoCellsAnd
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
   for (const CropPair& pair : {kOpenFloor, kOpenFloorAces}) {
-    const MergeCase merge_case = cut(pair);
     SeedMerger merger;
-    const MergeResult result = merger.merge(merge_case.a, merge_case.b);
-    const CaseError error = caseError(merge_case, result.T_to_from);
-    EXPECT_TRUE(result.accepted) << "case " << pair.case_id << ": " << result.reason;
-    EXPECT_TRUE(isCorrect(error)) << "case " << pair.case_id << ": " << error.distance_cells
-                                  << " cells, " << error.angle_rad / kDegree << "°";
+    const MergeResult result = merge_test::expectMergedWithinTwoCellsAndOneDegree(pair, merger);
     EXPECT_EQ(result.method, "seed/global-search-free") << "case " << pair.case_id;
+    const MergeCase merge_case = cut(pair);
 
     SeedMergerSettings off;
     off.global.free_agreement_hypotheses = 0;

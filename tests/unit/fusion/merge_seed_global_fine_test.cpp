@@ -19,13 +19,8 @@ using merge_test::CropPair;
 using merge_test::cut;
 
 void expectMergedWithinTwoCellsAndOneDegree(const CropPair& pair) {
-  const MergeCase merge_case = cut(pair);
   SeedMerger merger;
-  const MergeResult result = merger.merge(merge_case.a, merge_case.b);
-  const CaseError error = caseError(merge_case, result.T_to_from);
-  EXPECT_TRUE(result.accepted) << "case " << pair.case_id << ": " << result.reason;
-  EXPECT_TRUE(isCorrect(error)) << "case " << pair.case_id << ": " << error.distance_cells
-                                << " cells, " << error.angle_rad / kDegree << "°";
+  merge_test::expectMergedWithinTwoCellsAndOneDegree(pair, merger);
 }
 
 TEST(MergeSeedGlobalFineTest, SettingsReadTheNewKeys) {
