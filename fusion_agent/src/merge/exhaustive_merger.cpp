@@ -81,32 +81,39 @@ ExhaustiveSearchSettings loadExhaustiveSearchSettings(const Config& config) {
 
 std::vector<GridTransform> ExhaustiveMerger::hypotheses(const GridMap& from,
                                                         const GridMap& to) const {
+  return hypotheses(from, to, ExhaustiveScore(from, to, settings_.search, classes_));
+}
+
+std::vector<GridTransform> ExhaustiveMerger::hypotheses(const GridMap& from, const GridMap& to,
+                                                        const ExhaustiveScore& score) const {
   std::vector<GridTransform> found;
   for (const ExhaustiveHypothesis& hypothesis :
-       exhaustiveSearch(from, to, settings_.search, classes_)) {
+       exhaustiveSearch(from, to, score, settings_.search, classes_)) {
     found.push_back(hypothesis.T_to_from);
   }
   return found;
 }
 
 MergeResult ExhaustiveMerger::merge(const GridMap& from, const GridMap& to) {
-  const std::vector<GridTransform> found = hypotheses(from, to);
+  const ExhaustiveScore score(from, to, settings_.search, classes_);
+  const std::vector<GridTransform> found = hypotheses(from, to, score);
   MergeResult result = judgeFoundHypotheses(judge_, from, to, found, name(), "exhaustive search");
   if (!result.accepted) {
     return result;
   }
+  const Eigen::Vector2d pivot = knownCentre(from);
   if (settings_.check_own_score) {
-    checkOwnScore(from, to, result);
+    checkOwnScore(from, to, score, pivot, result);
   }
   if (result.accepted && settings_.check_both_ways) {
-    checkTheOtherWay(from, to, found, result);
+    checkTheOtherWay(from, to, found, pivot, result);
   }
   return result;
 }
 
-void ExhaustiveMerger::refuseUnlessAgreeing(const GridMap& from, const GridTransform& other,
-                                            const std::string& what, MergeResult& result) const {
-  const Eigen::Vector2d centre = knownCentre(from);
+void ExhaustiveMerger::refuseUnlessAgreeing(const Eigen::Vector2d& centre,
+                                            const GridTransform& other, const std::string& what,
+                                            MergeResult& result) const {
   const double cells = (other.apply(centre) - result.T_to_from.apply(centre)).norm();
   const double deg =
       std::abs(std::remainder(other.theta_rad - result.T_to_from.theta_rad, 2.0 * M_PI)) * 180.0 /
@@ -120,18 +127,18 @@ void ExhaustiveMerger::refuseUnlessAgreeing(const GridMap& from, const GridTrans
   }
 }
 
-void ExhaustiveMerger::refuseUnlessTurnFixed(const GridMap& from, const GridMap& to,
+void ExhaustiveMerger::refuseUnlessTurnFixed(const ExhaustiveScore& score,
+                                             const Eigen::Vector2d& centre,
                                              const ExhaustiveHypothesis& peak,
                                              MergeResult& result) const {
-  const Eigen::Vector2d centre = knownCentre(from);
   const Eigen::Vector2d landed = peak.T_to_from.apply(centre);
   double largest = 0.0;
   for (const double sign : {-1.0, 1.0}) {
     GridTransform turned = peak.T_to_from;
     turned.theta_rad += sign * settings_.ambiguity_turn_deg * M_PI / 180.0;
     turned.t_cells += landed - turned.apply(centre);
-    const ExhaustiveHypothesis rival = bestScoreNear(
-        from, to, turned, 0.0, 0, settings_.ambiguity_shift_cells, settings_.search, classes_);
+    const ExhaustiveHypothesis rival =
+        score.bestNear(turned, 0.0, 0, settings_.ambiguity_shift_cells);
     largest = std::max(largest, rival.score);
   }
   const double share = peak.score > 0.0 ? largest / peak.score : 1.0;
@@ -145,15 +152,16 @@ void ExhaustiveMerger::refuseUnlessTurnFixed(const GridMap& from, const GridMap&
 }
 
 void ExhaustiveMerger::checkOwnScore(const GridMap& from, const GridMap& to,
+                                     const ExhaustiveScore& score, const Eigen::Vector2d& pivot,
                                      MergeResult& result) const {
   constexpr int kTurnSteps = 8;
   const ExhaustiveHypothesis best =
-      bestScoreNear(from, to, result.T_to_from, settings_.own_score_turn_deg * M_PI / 180.0,
-                    kTurnSteps, settings_.own_score_shift_cells, settings_.search, classes_);
-  refuseUnlessAgreeing(from, best.T_to_from, "the search's own score peaks elsewhere: its best",
+      score.bestNear(result.T_to_from, settings_.own_score_turn_deg * M_PI / 180.0, kTurnSteps,
+                     settings_.own_score_shift_cells);
+  refuseUnlessAgreeing(pivot, best.T_to_from, "the search's own score peaks elsewhere: its best",
                        result);
   if (result.accepted && settings_.max_turn_ambiguity < 1.0) {
-    refuseUnlessTurnFixed(from, to, best, result);
+    refuseUnlessTurnFixed(score, pivot, best, result);
   }
   if (result.accepted && settings_.return_own_peak) {
     const OverlapScore overlap = scoreOverlap(from, to, best.T_to_from);
@@ -165,14 +173,14 @@ void ExhaustiveMerger::checkOwnScore(const GridMap& from, const GridMap& to,
 
 void ExhaustiveMerger::checkTheOtherWay(const GridMap& from, const GridMap& to,
                                         const std::vector<GridTransform>& found,
-                                        MergeResult& result) {
+                                        const Eigen::Vector2d& pivot, MergeResult& result) {
   const MergeResult other = judge_.judgeHypotheses(to, from, inverses(found));
   if (!other.accepted) {
     result.accepted = false;
     result.reason = "exhaustive search: refused the other way: " + other.reason;
     return;
   }
-  refuseUnlessAgreeing(from, other.T_to_from.inverse(), "the other way's transform", result);
+  refuseUnlessAgreeing(pivot, other.T_to_from.inverse(), "the other way's transform", result);
 }
 
 }  // namespace mrslam::fusion

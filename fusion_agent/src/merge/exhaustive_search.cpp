@@ -486,8 +486,10 @@ std::vector<ExhaustiveHypothesis> refined(const std::vector<ExhaustiveHypothesis
   return result;
 }
 
-/// Steps 1-6 one way: the B&B's best distinct leaves of `from` onto `to`, refined.
+/// Steps 1-6 one way: the B&B's best distinct leaves of `from` onto `to`, refined by `fine`
+/// (the full-resolution score of `from` onto `to`).
 std::vector<ExhaustiveHypothesis> searchOneWay(const GridMap& from, const GridMap& to,
+                                               const FineScorer& fine,
                                                const ExhaustiveSearchSettings& settings,
                                                const SimilaritySettings& classes) {
   const int cell_size = std::max(1, settings.cell_size);
@@ -519,40 +521,16 @@ std::vector<ExhaustiveHypothesis> searchOneWay(const GridMap& from, const GridMa
     }
     search.expand(node);
   }
-  return refined(kept.best(), FineScorer(from, to, settings, classes),
-                 settings.rotation_step_cells / std::max(set.radius, 1.0), cell_size);
+  return refined(kept.best(), fine, settings.rotation_step_cells / std::max(set.radius, 1.0),
+                 cell_size);
 }
-
-/// The score of step 7: both ways.
-class BothWays {
- public:
-  BothWays(const GridMap& from, const GridMap& to, const ExhaustiveSearchSettings& settings,
-           const SimilaritySettings& classes)
-      : forward_(from, to, settings, classes), backward_(to, from, settings, classes) {}
-  double score(const GridTransform& T_to_from) const {
-    return forward_.score(T_to_from) + backward_.score(T_to_from.inverse());
-  }
-  /// The best transform by score() near T_to_from: turns within ±turn in `steps` steps a side,
-  /// shifts within ±shift cells, then the same at a quarter of the turn and ±1 cell.
-  ExhaustiveHypothesis refine(const GridTransform& T_to_from, double turn, int steps,
-                              int shift) const {
-    const auto both = [this](const GridTransform& T) { return score(T); };
-    const ExhaustiveHypothesis coarse =
-        bestNear(both, T_to_from, forward_.pivot(), turn, steps, shift);
-    return bestNear(both, coarse.T_to_from, forward_.pivot(), 0.25 * turn, steps, 1);
-  }
-
- private:
-  FineScorer forward_;
-  FineScorer backward_;
-};
 
 /// Step 7: the `count` best by the score both ways, no two alike.
 std::vector<ExhaustiveHypothesis> bestBothWays(std::vector<ExhaustiveHypothesis> all,
-                                               const BothWays& scorer, const GridMap& from,
+                                               const ExhaustiveScore& score, const GridMap& from,
                                                const ExhaustiveSearchSettings& settings) {
   for (ExhaustiveHypothesis& hypothesis : all) {
-    hypothesis.score = scorer.score(hypothesis.T_to_from);
+    hypothesis.score = score.at(hypothesis.T_to_from);
   }
   std::stable_sort(all.begin(), all.end(),
                    [](const ExhaustiveHypothesis& a, const ExhaustiveHypothesis& b) {
@@ -576,25 +554,47 @@ std::vector<ExhaustiveHypothesis> bestBothWays(std::vector<ExhaustiveHypothesis>
 
 }  // namespace
 
+struct ExhaustiveScore::Parts {
+  FineScorer forward;   ///< `from` onto `to`
+  FineScorer backward;  ///< `to` onto `from`
+};
+
+ExhaustiveScore::ExhaustiveScore(const GridMap& from, const GridMap& to,
+                                 const ExhaustiveSearchSettings& settings,
+                                 const SimilaritySettings& classes)
+    : parts_(new Parts{FineScorer(from, to, settings, classes),
+                       FineScorer(to, from, settings, classes)}) {}
+
+ExhaustiveScore::~ExhaustiveScore() = default;
+
+double ExhaustiveScore::at(const GridTransform& T_to_from) const {
+  return parts_->forward.score(T_to_from) + parts_->backward.score(T_to_from.inverse());
+}
+
+ExhaustiveHypothesis ExhaustiveScore::bestNear(const GridTransform& T_to_from, double turn_rad,
+                                               int turn_steps, int shift_cells) const {
+  const auto both = [this](const GridTransform& T) { return at(T); };
+  const Eigen::Vector2d& pivot = parts_->forward.pivot();
+  const ExhaustiveHypothesis coarse =
+      fusion::bestNear(both, T_to_from, pivot, turn_rad, turn_steps, shift_cells);
+  return fusion::bestNear(both, coarse.T_to_from, pivot, 0.25 * turn_rad, turn_steps, 1);
+}
+
 double exhaustiveScore(const GridMap& from, const GridMap& to, const GridTransform& T_to_from,
                        const ExhaustiveSearchSettings& settings,
                        const SimilaritySettings& classes) {
-  return BothWays(from, to, settings, classes).score(T_to_from);
-}
-
-ExhaustiveHypothesis bestScoreNear(const GridMap& from, const GridMap& to,
-                                   const GridTransform& T_to_from, double turn_rad, int turn_steps,
-                                   int shift_cells, const ExhaustiveSearchSettings& settings,
-                                   const SimilaritySettings& classes) {
-  return BothWays(from, to, settings, classes).refine(T_to_from, turn_rad, turn_steps, shift_cells);
+  return ExhaustiveScore(from, to, settings, classes).at(T_to_from);
 }
 
 std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const GridMap& to,
+                                                   const ExhaustiveScore& score,
                                                    const ExhaustiveSearchSettings& settings,
                                                    const SimilaritySettings& classes) {
-  std::vector<ExhaustiveHypothesis> all = searchOneWay(from, to, settings, classes);
+  std::vector<ExhaustiveHypothesis> all =
+      searchOneWay(from, to, score.parts_->forward, settings, classes);
   if (settings.both_ways) {
-    for (ExhaustiveHypothesis& reverse : searchOneWay(to, from, settings, classes)) {
+    for (ExhaustiveHypothesis& reverse :
+         searchOneWay(to, from, score.parts_->backward, settings, classes)) {
       reverse.T_to_from = reverse.T_to_from.inverse();
       all.push_back(reverse);
     }
@@ -602,7 +602,14 @@ std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const Gr
   if (all.empty()) {
     return {};
   }
-  return bestBothWays(std::move(all), BothWays(from, to, settings, classes), from, settings);
+  return bestBothWays(std::move(all), score, from, settings);
+}
+
+std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const GridMap& to,
+                                                   const ExhaustiveSearchSettings& settings,
+                                                   const SimilaritySettings& classes) {
+  return exhaustiveSearch(from, to, ExhaustiveScore(from, to, settings, classes), settings,
+                          classes);
 }
 
 }  // namespace mrslam::fusion

@@ -41,4 +41,13 @@ inline MergeResult expectMergedWithinTwoCellsAndOneDegree(const CropPair& pair, 
   return result;
 }
 
+/// Merges the pair's crops with `merger`, expecting no accepted transform but a correct one.
+inline void expectNoWrongAccept(const CropPair& pair, MapMerger& merger) {
+  const MergeCase merge_case = cut(pair);
+  const MergeResult result = merger.merge(merge_case.a, merge_case.b);
+  if (result.accepted) {
+    EXPECT_TRUE(isCorrect(caseError(merge_case, result.T_to_from))) << "case " << pair.case_id;
+  }
+}
+
 }  // namespace mrslam::fusion::merge_test

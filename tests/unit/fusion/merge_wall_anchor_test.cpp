@@ -47,12 +47,7 @@ TEST(MergeWallAnchorTest, CropsThatDriftOnOpenFloorMergeWithinTwoCellsAndOneDegr
   };
   SeedMerger merger;
   for (const CropPair& pair : pairs) {
-    const MergeCase merge_case = cut(pair);
-    const MergeResult result = merger.merge(merge_case.a, merge_case.b);
-    const CaseError error = caseError(merge_case, result.T_to_from);
-    EXPECT_TRUE(result.accepted) << "case " << pair.case_id << ": " << result.reason;
-    EXPECT_TRUE(isCorrect(error)) << "case " << pair.case_id << ": " << error.distance_cells
-                                  << " cells, " << error.angle_rad * 180.0 / M_PI << "°";
+    merge_test::expectMergedWithinTwoCellsAndOneDegree(pair, merger);
   }
 }
 
@@ -71,11 +66,7 @@ TEST(MergeWallAnchorTest, QuarterTurnsOfRealCropsAreNotAccepted) {
   };
   SeedMerger merger;
   for (const CropPair& pair : pairs) {
-    const MergeCase merge_case = cut(pair);
-    const MergeResult result = merger.merge(merge_case.a, merge_case.b);
-    if (result.accepted) {
-      EXPECT_TRUE(isCorrect(caseError(merge_case, result.T_to_from))) << "case " << pair.case_id;
-    }
+    merge_test::expectNoWrongAccept(pair, merger);
   }
 }
 

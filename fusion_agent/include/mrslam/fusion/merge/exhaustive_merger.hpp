@@ -58,18 +58,25 @@ class ExhaustiveMerger : public MapMerger {
   std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to) const;
 
  private:
-  /// With check_both_ways: refuses `result` unless the other way accepts the same transform.
+  /// The hypotheses with the pair's score of step 7 built once.
+  std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to,
+                                        const ExhaustiveScore& score) const;
+  /// With check_both_ways: refuses `result` unless the other way accepts the same transform
+  /// (compared where `pivot`, `from`'s known centre, lands).
   void checkTheOtherWay(const GridMap& from, const GridMap& to,
-                        const std::vector<GridTransform>& found, MergeResult& result);
-  /// With check_own_score: refuses `result` unless the search's score both ways peaks within
-  /// the agreement of the accepted transform.
-  void checkOwnScore(const GridMap& from, const GridMap& to, MergeResult& result) const;
-  /// Refuses `result` when the score both ways turned by ±ambiguity_turn_deg about `from`'s
-  /// known centre comes within max_turn_ambiguity of `peak`'s.
-  void refuseUnlessTurnFixed(const GridMap& from, const GridMap& to,
+                        const std::vector<GridTransform>& found, const Eigen::Vector2d& pivot,
+                        MergeResult& result);
+  /// With check_own_score: refuses `result` unless `score` (both ways) peaks within the
+  /// agreement of the accepted transform.
+  void checkOwnScore(const GridMap& from, const GridMap& to, const ExhaustiveScore& score,
+                     const Eigen::Vector2d& pivot, MergeResult& result) const;
+  /// Refuses `result` when `score` turned by ±ambiguity_turn_deg about `centre` (`from`'s known
+  /// centre) comes within max_turn_ambiguity of `peak`'s.
+  void refuseUnlessTurnFixed(const ExhaustiveScore& score, const Eigen::Vector2d& centre,
                              const ExhaustiveHypothesis& peak, MergeResult& result) const;
-  /// Refuses `result` when `other` is farther from it than the agreement bars.
-  void refuseUnlessAgreeing(const GridMap& from, const GridTransform& other,
+  /// Refuses `result` when `other` puts `centre` farther from where `result` puts it, or turns
+  /// farther, than the agreement bars.
+  void refuseUnlessAgreeing(const Eigen::Vector2d& centre, const GridTransform& other,
                             const std::string& what, MergeResult& result) const;
 
   ExhaustiveMergerSettings settings_;

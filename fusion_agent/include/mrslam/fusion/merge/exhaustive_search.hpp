@@ -34,6 +34,7 @@
 //    `hypotheses` best, no two alike, are returned best first.
 // The caller verifies them (SeedMerger::judgeHypotheses, exhaustive_merger.hpp).
 
+#include <memory>
 #include <vector>
 
 #include "mrslam/common/grid_map.hpp"
@@ -69,8 +70,40 @@ struct ExhaustiveHypothesis {
   double score = 0.0;
 };
 
-/// Steps 1-5: the best distinct transforms of `from` onto `to`, best first (empty when either
-/// map has no occupied cell).
+/// The score of step 7 of one pair of maps (both ways, full resolution): its value grids and
+/// point sets are built once, for every transform scored.
+class ExhaustiveScore {
+ public:
+  ExhaustiveScore(const GridMap& from, const GridMap& to, const ExhaustiveSearchSettings& settings,
+                  const SimilaritySettings& classes);
+  ~ExhaustiveScore();
+  ExhaustiveScore(const ExhaustiveScore&) = delete;
+  ExhaustiveScore& operator=(const ExhaustiveScore&) = delete;
+
+  /// The score at one transform.
+  double at(const GridTransform& T_to_from) const;
+  /// The transform of the best score near T_to_from: turns within ±turn_rad in `turn_steps`
+  /// steps a side and shifts within ±shift_cells, then a quarter of the turn and ±1 cell around
+  /// the best.
+  ExhaustiveHypothesis bestNear(const GridTransform& T_to_from, double turn_rad, int turn_steps,
+                                int shift_cells) const;
+
+ private:
+  struct Parts;
+  std::unique_ptr<const Parts> parts_;
+  friend std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap&, const GridMap&,
+                                                            const ExhaustiveScore&,
+                                                            const ExhaustiveSearchSettings&,
+                                                            const SimilaritySettings&);
+};
+
+/// Steps 1-7: the best distinct transforms of `from` onto `to`, best first (empty when either
+/// map has no occupied cell); `score` is the pair's score of step 7.
+std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const GridMap& to,
+                                                   const ExhaustiveScore& score,
+                                                   const ExhaustiveSearchSettings& settings,
+                                                   const SimilaritySettings& classes);
+/// The same with a score of its own.
 std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const GridMap& to,
                                                    const ExhaustiveSearchSettings& settings,
                                                    const SimilaritySettings& classes);
@@ -78,13 +111,5 @@ std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const Gr
 /// The score of step 7 (both ways, full resolution) at one transform.
 double exhaustiveScore(const GridMap& from, const GridMap& to, const GridTransform& T_to_from,
                        const ExhaustiveSearchSettings& settings, const SimilaritySettings& classes);
-
-/// The transform of the best score of step 7 near T_to_from: turns within ±turn_rad in
-/// `turn_steps` steps a side and shifts within ±shift_cells, then a quarter of the turn and ±1
-/// cell around the best.
-ExhaustiveHypothesis bestScoreNear(const GridMap& from, const GridMap& to,
-                                   const GridTransform& T_to_from, double turn_rad, int turn_steps,
-                                   int shift_cells, const ExhaustiveSearchSettings& settings,
-                                   const SimilaritySettings& classes);
 
 }  // namespace mrslam::fusion
