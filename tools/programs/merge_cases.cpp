@@ -7,9 +7,15 @@
 // bands 20–40, 40–60 and 60–80 %. Success: accepted within 2 cells and 1° of the truth; a false
 // accept is accepted but wrong. Negative cases: crops of two different buildings; every accept is
 // a false accept. Time per merge: median and 90th percentile over all cases.
+//
+// To look into single cases: `--only 40,125` runs only those, `--judge-truth` also judges each
+// case's exact truth by the seed acceptance alone (refused there: the acceptance or block 8 loses
+// the case, not the search), `--save DIR` writes each case's crops and crop B with crop A's walls
+// at the truth in red.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -19,11 +25,13 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "mrslam/common/map_io.hpp"
 #include "mrslam/common/map_loaders.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
 #include "mrslam/fusion/merge/merger_registry.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
+#include "mrslam/fusion/merge/seed_merger.hpp"
 
 namespace {
 
@@ -39,6 +47,9 @@ struct CasesOptions {
   std::string config;  ///< optional YAML: a section of settings per method name
   bool json = false;
   bool details = false;
+  std::string only;          ///< comma-separated case ids to run (empty: all)
+  bool judge_truth = false;  ///< judge each positive case's exact truth by the seed acceptance
+  std::string save_dir;      ///< write each run case's crops and truth picture here (empty: no)
 };
 
 /// The shared maps and the building each shows.
@@ -207,11 +218,89 @@ void printTable(const std::vector<MethodTally>& tallies) {
   }
 }
 
+/// The case ids of `--only` (empty: every case).
+std::vector<int> parseCaseIds(const std::string& text) {
+  std::vector<int> ids;
+  for (const std::string& item : splitList(text)) {
+    const bool digits =
+        std::all_of(item.begin(), item.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
+    if (!digits || item.size() > 9) {
+      throw std::invalid_argument("--only: not a case id: '" + item + "'");
+    }
+    ids.push_back(std::stoi(item));
+  }
+  return ids;
+}
+
+bool isSelected(const std::vector<int>& ids, int id) {
+  return ids.empty() || std::find(ids.begin(), ids.end(), id) != ids.end();
+}
+
+/// `--judge-truth`: the seed acceptance given the exact truth as its only hypothesis. A refusal
+/// there means the acceptance (or block 8 sliding away from it) loses the case, not the search.
+nlohmann::json judgeTruth(const MergeCase& merge_case, mrslam::fusion::SeedMerger& judge) {
+  const mrslam::fusion::MergeResult result =
+      judge.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
+  const mrslam::fusion::CaseError error = mrslam::fusion::caseError(merge_case, result.T_to_from);
+  return {{"case", merge_case.id},
+          {"overlap", merge_case.overlap},
+          {"accepted", result.accepted},
+          {"verification", result.verification},
+          {"distance_error_cells", error.distance_cells},
+          {"angle_error_deg", error.angle_rad * 180.0 / 3.14159265358979323846},
+          {"reason", result.reason}};
+}
+
+void printTruthJudgement(const nlohmann::json& judged) {
+  const std::string reason = judged["reason"].get<std::string>();
+  std::cout << "case " << judged["case"].get<int>() << " overlap " << std::fixed
+            << std::setprecision(2) << judged["overlap"].get<double>() << ": the truth is "
+            << (judged["accepted"].get<bool>() ? "accepted" : "refused") << ", V "
+            << std::setprecision(3) << judged["verification"].get<double>() << ", ends "
+            << std::setprecision(2) << judged["distance_error_cells"].get<double>() << " cells and "
+            << judged["angle_error_deg"].get<double>() << " deg from it" << std::defaultfloat
+            << (reason.empty() ? "" : " (" + reason + ")") << '\n';
+}
+
+/// `--save`: case_<id>_a.png, case_<id>_b.png and case_<id>_truth.png (crop B with crop A's
+/// walls placed by the truth in red; a negative case has no truth picture).
+void saveCasePictures(const MergeCase& merge_case, const fs::path& folder) {
+  const std::string stem = (folder / ("case_" + std::to_string(merge_case.id))).string();
+  mrslam::saveMapPng(merge_case.a, stem + "_a.png");
+  mrslam::saveMapPng(merge_case.b, stem + "_b.png");
+  if (!merge_case.positive) {
+    return;
+  }
+  mrslam::MapOverlay walls_of_a;
+  const mrslam::GridGeometry& geometry = merge_case.a.geometry;
+  for (int cy = 0; cy < geometry.height; ++cy) {
+    for (int cx = 0; cx < geometry.width; ++cx) {
+      if (merge_case.a.at(cx, cy) > 50) {
+        const Eigen::Vector2d in_b = merge_case.T_b_a.apply(Eigen::Vector2d(cx, cy));
+        walls_of_a.cells.emplace_back(static_cast<int>(std::lround(in_b.x())),
+                                      static_cast<int>(std::lround(in_b.y())));
+      }
+    }
+  }
+  int hits = 0, inside = 0;
+  for (const auto& c : walls_of_a.cells) {
+    if (merge_case.b.geometry.contains(c.x(), c.y())) {
+      ++inside;
+      hits += merge_case.b.at(c.x(), c.y()) > 50;
+    }
+  }
+  mrslam::saveMapPng(merge_case.b, stem + "_truth.png", {walls_of_a});
+}
+
 int run(const CasesOptions& options) {
   std::vector<MethodTally> tallies;
   std::vector<std::unique_ptr<mrslam::fusion::MapMerger>> mergers;
   std::vector<MergeCase> cases;
+  std::vector<int> only;
+  std::unique_ptr<mrslam::fusion::SeedMerger> truth_judge;
+  nlohmann::json truth_judgements = nlohmann::json::array();
   try {
+    only = parseCaseIds(options.only);
     const mrslam::Config config = options.config.empty()
                                       ? mrslam::Config::loadString("", "<defaults>")
                                       : mrslam::Config::loadFile(options.config);
@@ -223,11 +312,25 @@ int run(const CasesOptions& options) {
     }
     const std::string folder = options.maps_dir.empty() ? findMapsFolder() : options.maps_dir;
     cases = mrslam::fusion::generateCases(loadSources(folder), options.settings);
+    if (options.judge_truth) {
+      truth_judge = std::make_unique<mrslam::fusion::SeedMerger>(
+          mrslam::fusion::loadSeedMergerSettings(config.section("seed")));
+    }
   } catch (const std::exception& error) {
     std::cerr << "mrslam_merge_cases: " << error.what() << '\n';
     return 1;
   }
   for (const MergeCase& merge_case : cases) {
+    if (!isSelected(only, merge_case.id)) {
+      continue;
+    }
+    if (!options.save_dir.empty()) {
+      fs::create_directories(options.save_dir);
+      saveCasePictures(merge_case, options.save_dir);
+    }
+    if (truth_judge && merge_case.positive) {
+      truth_judgements.push_back(judgeTruth(merge_case, *truth_judge));
+    }
     for (std::size_t m = 0; m < mergers.size(); ++m) {
       scoreCase(merge_case, *mergers[m], tallies[m]);
     }
@@ -240,13 +343,18 @@ int run(const CasesOptions& options) {
     for (const MethodTally& tally : tallies) {
       methods[tally.name] = toJson(tally, options.details);
     }
-    std::cout << nlohmann::json{{"cases", options.settings.positive_cases},
-                                {"negatives", options.settings.negative_cases},
-                                {"seed", options.settings.seed},
-                                {"methods", methods}}
-                     .dump()
-              << '\n';
+    nlohmann::json json = {{"cases", options.settings.positive_cases},
+                           {"negatives", options.settings.negative_cases},
+                           {"seed", options.settings.seed},
+                           {"methods", methods}};
+    if (options.judge_truth) {
+      json["truth_judgements"] = truth_judgements;
+    }
+    std::cout << json.dump() << '\n';
   } else {
+    for (const nlohmann::json& judged : truth_judgements) {
+      printTruthJudgement(judged);
+    }
     printTable(tallies);
   }
   return 0;
@@ -276,6 +384,12 @@ int main(int argc, char** argv) {
   app.add_option("--config", options.config, "YAML of merger settings, one section per method");
   app.add_flag("--json", options.json, "print one JSON object");
   app.add_flag("--details", options.details, "with --json: every case's result too");
+  app.add_option("--only", options.only, "comma-separated case ids: run only these");
+  app.add_flag("--judge-truth", options.judge_truth,
+               "judge each positive case's exact truth by the seed acceptance alone (with --json: "
+               "truth_judgements)");
+  app.add_option("--save", options.save_dir,
+                 "folder: write each run case's crops and crop B with A's walls at the truth");
   app.set_version_flag("--version", mrslam::versionLine("merge_cases"));
   CLI11_PARSE(app, argc, argv);
   return run(options);

@@ -1,0 +1,127 @@
+// mrslam_merge_cases as a separate process: the case selection, the truth judgement and the
+// pictures it writes to look into single cases.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "agent_processes.hpp"
+
+namespace mrslam::test {
+namespace {
+
+struct CommandRun {
+  int exit_code = -1;
+  std::string output;  ///< standard output and error together
+};
+
+CommandRun runCases(std::vector<std::string> arguments, const std::filesystem::path& folder) {
+  arguments.insert(arguments.end(), {"--maps", sharedDataPath("maps"), "--cases", "6",
+                                     "--negatives", "2", "--methods", "feature"});
+  const std::string log = (folder / "cases.log").string();
+  auto process = startAgent("tools/mrslam_merge_cases", arguments, log);
+  CommandRun run;
+  run.exit_code = finish(*process, 120.0);
+  std::ifstream in(log);
+  run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return run;
+}
+
+nlohmann::json jsonLine(const std::string& output) {
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.empty() && line.front() == '{') {
+      return nlohmann::json::parse(line);
+    }
+  }
+  return nullptr;
+}
+
+int casesRun(const nlohmann::json& method) {
+  int cases = method["negative_cases"].get<int>();
+  for (const auto& band : method["bands"]) {
+    cases += band["cases"].get<int>();
+  }
+  return cases;
+}
+
+bool isRed(const cv::Vec3b& bgr) {
+  return bgr[0] == 0 && bgr[1] == 0 && bgr[2] == 255;
+}
+
+/// Share of the red pixels of `truth` over known cells of `b` that lie within one pixel of a
+/// wall (dark pixel) of `b`.
+double redOnWalls(const cv::Mat& truth, const cv::Mat& b) {
+  int known = 0;
+  int near_wall = 0;
+  for (int row = 1; row + 1 < truth.rows; ++row) {
+    for (int col = 1; col + 1 < truth.cols; ++col) {
+      if (!isRed(truth.at<cv::Vec3b>(row, col)) || b.at<cv::Vec3b>(row, col)[0] == 128) {
+        continue;
+      }
+      ++known;
+      bool wall = false;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          wall = wall || b.at<cv::Vec3b>(row + dy, col + dx)[0] < 100;
+        }
+      }
+      near_wall += wall;
+    }
+  }
+  return known > 0 ? static_cast<double>(near_wall) / known : 0.0;
+}
+
+TEST(MergeCasesCommandTest, RunsOnlyTheChosenCasesAndJudgesTheirTruth) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
+  const auto folder = scratchFolder("only");
+  // Case 1 is positive and case 6 negative at 6 positive cases, seed 1.
+  const CommandRun run = runCases({"--only", "1,6", "--judge-truth", "--json"}, folder);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json json = jsonLine(run.output);
+  ASSERT_FALSE(json.is_null()) << run.output;
+  const nlohmann::json& feature = json["methods"]["feature"];
+  EXPECT_EQ(casesRun(feature), 2);
+  EXPECT_EQ(feature["negative_cases"].get<int>(), 1);
+  // The exact truth of a real crop pair stays where it is and passes the acceptance.
+  ASSERT_EQ(json["truth_judgements"].size(), 1u);
+  const nlohmann::json& judged = json["truth_judgements"][0];
+  EXPECT_EQ(judged["case"].get<int>(), 1);
+  EXPECT_TRUE(judged["accepted"].get<bool>()) << judged.dump();
+  EXPECT_LT(judged["distance_error_cells"].get<double>(), 2.0);
+  EXPECT_LT(judged["angle_error_deg"].get<double>(), 1.0);
+}
+
+TEST(MergeCasesCommandTest, SavesTheCropsAndCropAsWallsAtTheTruth) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
+  const auto folder = scratchFolder("save");
+  const std::filesystem::path pictures = folder / "pictures";
+  const CommandRun run = runCases({"--only", "1,6", "--save", pictures.string()}, folder);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  for (const char* name :
+       {"case_1_a.png", "case_1_b.png", "case_1_truth.png", "case_6_a.png", "case_6_b.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(pictures / name)) << name;
+  }
+  EXPECT_FALSE(std::filesystem::exists(pictures / "case_6_truth.png"));  // negative: no truth
+  EXPECT_FALSE(std::filesystem::exists(pictures / "case_0_a.png"));      // not chosen
+  const cv::Mat b = cv::imread((pictures / "case_1_b.png").string(), cv::IMREAD_COLOR);
+  const cv::Mat truth = cv::imread((pictures / "case_1_truth.png").string(), cv::IMREAD_COLOR);
+  ASSERT_FALSE(b.empty());
+  ASSERT_EQ(truth.size(), b.size());
+  // Crop A's walls placed by the truth land on crop B's walls where B knows the cells.
+  EXPECT_GT(redOnWalls(truth, b), 0.8);
+}
+
+TEST(MergeCasesCommandTest, ABadCaseIdIsRefusedWithItsText) {
+  const auto folder = scratchFolder("bad");
+  const CommandRun run = runCases({"--only", "3,x"}, folder);
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_THAT(run.output, ::testing::HasSubstr("--only: not a case id: 'x'"));
+}
+
+}  // namespace
+}  // namespace mrslam::test
