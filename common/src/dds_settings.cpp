@@ -6,7 +6,7 @@
 
 namespace mrslam {
 
-DdsSettings loadDdsSettings(const Config& section) {
+DdsSettings loadDdsSettings(const Config& section, const std::string& default_profile) {
   DdsSettings settings;
   settings.domain_id = static_cast<int>(section.getInt("domain_id", 0, {0, 232}));
   const std::string beside_config =
@@ -14,8 +14,7 @@ DdsSettings loadDdsSettings(const Config& section) {
           .lexically_normal()
           .string();
   settings.profiles_file = section.getPath("profiles_file", beside_config);
-  settings.participant_profile =
-      section.getString("participant_profile", settings.participant_profile);
+  settings.participant_profile = section.getString("participant_profile", default_profile);
   settings.discovery_server = section.getString("discovery_server", "");
   if (!settings.discovery_server.empty()) {
     const std::string problem = checkDiscoveryServerAddress(settings.discovery_server);

@@ -93,7 +93,7 @@ FusionConfig loadFusionConfig(const std::string& path) {
   const Config global_map = config.section("global_map");
   fusion.composer.resolution_m = global_map.getDouble("resolution_m", 0.0, {0.0, 10.0});
   loadMerge(config.section("merge"), fusion);
-  fusion.dds = loadDdsSettings(config.section("dds"));
+  fusion.dds = loadDdsSettings(config.section("dds"), kFusionParticipantProfile);
   const Config ros2 = config.section("ros2");
   fusion.ros2_map = ros2.getBool("map", fusion.ros2_map);
   fusion.ros2_frame_id = ros2.getString("frame_id", fusion.ros2_frame_id);

@@ -54,6 +54,15 @@ TEST(FusionConfigTest, LoadsEveryKey) {
   EXPECT_THAT(config.dds.profiles_file, HasSubstr("dds/profiles.xml"));
 }
 
+TEST(FusionConfigTest, TheParticipantIsOnUdpUnlessTheConfigSaysOtherwise) {
+  // Shared memory may never deliver to a fusion agent restarted after a crash (Fast-DDS#5053).
+  EXPECT_EQ(loadFusionConfig(writeConfig("dds:\n  domain_id: 7\n")).dds.participant_profile,
+            "mrslam_participant_udp");
+  EXPECT_EQ(loadFusionConfig(writeConfig("dds:\n  participant_profile: mrslam_participant\n"))
+                .dds.participant_profile,
+            "mrslam_participant");
+}
+
 TEST(FusionConfigTest, BadValuesNameFileLineAndKey) {
   EXPECT_THAT(loadError("publish_period_s: 0\n"),
               HasSubstr("fusion.yaml:1: publish_period_s: 0 is out of range"));

@@ -25,8 +25,16 @@ struct DdsSettings {
   std::string security_identity;  ///< empty: the agent's own (robot id, or "fusion")
 };
 
-/// Reads the `dds:` section. profiles_file defaults to dds/profiles.xml beside the config file.
-DdsSettings loadDdsSettings(const Config& section);
+/// The fusion agent's default participant profile: UDP alone. Fast DDS 2.9's shared memory may
+/// never deliver to a subscriber restarted after a crash on the robots' host, which reuses the
+/// dead process's port (eProsima/Fast-DDS#5053); the robots' maps reach it over UDP loopback
+/// as fast (docs/architecture.md).
+constexpr const char* kFusionParticipantProfile = "mrslam_participant_udp";
+
+/// Reads the `dds:` section. profiles_file defaults to dds/profiles.xml beside the config file,
+/// participant_profile to `default_profile`.
+DdsSettings loadDdsSettings(const Config& section,
+                            const std::string& default_profile = "mrslam_participant");
 
 /// The files security needs, in the order CA, governance, certificate, key, permissions.
 std::vector<std::string> securityFiles(const DdsSettings& settings);
