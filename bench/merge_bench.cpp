@@ -1,6 +1,11 @@
-// Seed merger costs: one merge of two 400 × 400 crops of a real map (Intel lab), turned and
-// shifted by a seeded random transform with 40-100 % overlap, on one core. Reports the median of
-// one merge over the cases and each block's share of the time (SeedMerger::lastTimings).
+// Merge costs: one merge of two 400 × 400 crops of a real map (Intel lab, ACES), turned and
+// shifted by a seeded random transform with 40-100 % overlap, on one core. BM_SeedMerge400
+// reports the median of one merge over the cases and each block's share of the time
+// (SeedMerger::lastTimings); BM_Merge400 the median, the 90th percentile and the share merged
+// within 2 cells and 1° of the truth for any merger of the registry (the feature baseline, the
+// exhaustive search, the chain) on the same cases. BM_MergeWholeBuilding: two turned 700-cell
+// windows of the ACES map (crops of about 1000 cells a side, which the exhaustive search takes on
+// larger cells, max_grid_cells).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -11,6 +16,8 @@
 #include <vector>
 
 #include "../tests/unit/fusion/merge_test_maps.hpp"
+#include "mrslam/fusion/merge/merge_cases.hpp"
+#include "mrslam/fusion/merge/merger_registry.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
 
 namespace mrslam::fusion {
@@ -35,6 +42,94 @@ std::vector<merge_test::KnownCase> cases(const std::string& file) {
   }
   return known;
 }
+
+double percentileOf(std::vector<double> values, double fraction) {
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
+  return values[rank];
+}
+
+/// Within 2 cells (at the overlap's centre) and 1° of the truth.
+bool withinTolerance(const MergeResult& result, const merge_test::KnownCase& pair) {
+  const double cells = (result.T_to_from.apply(pair.overlap_centre_from) -
+                        pair.T_to_from.apply(pair.overlap_centre_from))
+                           .norm();
+  const double turn =
+      std::abs(std::remainder(result.T_to_from.theta_rad - pair.T_to_from.theta_rad, 2.0 * M_PI));
+  return result.accepted && cells <= 2.0 && turn <= M_PI / 180.0;
+}
+
+void BM_Merge400(benchmark::State& state, const char* method, const char* file) {
+  cv::setNumThreads(1);  // one core
+  const std::vector<merge_test::KnownCase> known = cases(file);
+  if (known.empty()) {
+    state.SkipWithError("needs ../shared/data/maps");
+    return;
+  }
+  const std::unique_ptr<MapMerger> merger = makeMerger(method);
+  std::vector<double> times;
+  int correct = 0;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const merge_test::KnownCase& pair = known[next++ % known.size()];
+    const auto start = std::chrono::steady_clock::now();
+    const MergeResult result = merger->merge(pair.from, pair.to);
+    times.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+    benchmark::DoNotOptimize(result);
+    correct += withinTolerance(result, pair) ? 1 : 0;
+  }
+  state.counters["median_ms"] = percentileOf(times, 0.5);
+  state.counters["p90_ms"] = percentileOf(times, 0.9);
+  state.counters["correct_share"] =
+      static_cast<double>(correct) / static_cast<double>(times.size());
+}
+BENCHMARK_CAPTURE(BM_Merge400, feature_intel, "feature", "carpin-intel.txt")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3 * kCases);
+BENCHMARK_CAPTURE(BM_Merge400, feature_aces, "feature", "freiburg-aces.pgm")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3 * kCases);
+BENCHMARK_CAPTURE(BM_Merge400, exhaustive_intel, "exhaustive", "carpin-intel.txt")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(kCases);
+BENCHMARK_CAPTURE(BM_Merge400, chain_intel, "chain", "carpin-intel.txt")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(kCases);
+
+void BM_MergeWholeBuilding(benchmark::State& state, const char* method) {
+  cv::setNumThreads(1);  // one core
+  const std::string path = std::string(MRSLAM_DATA_DIR) + "/maps/freiburg-aces.pgm";
+  if (!std::filesystem::exists(path)) {
+    state.SkipWithError("needs ../shared/data/maps");
+    return;
+  }
+  const SourceMap source{"freiburg-aces.pgm", "aces", merge_test::loadMap(path)};
+  const MergeCase pair = makeCase(source, {{150, 120}, 700, 0.6, {10, 20}, {30, 5}}, source,
+                                  {{380, 330}, 700, -0.35, {25, 3}, {4, 18}});
+  const std::unique_ptr<MapMerger> merger = makeMerger(method);
+  std::vector<double> times;
+  int correct = 0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const MergeResult result = merger->merge(pair.a, pair.b);
+    times.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+    benchmark::DoNotOptimize(result);
+    correct += result.accepted && isCorrect(caseError(pair, result.T_to_from)) ? 1 : 0;
+  }
+  state.counters["median_ms"] = percentileOf(times, 0.5);
+  state.counters["correct_share"] =
+      static_cast<double>(correct) / static_cast<double>(times.size());
+}
+BENCHMARK_CAPTURE(BM_MergeWholeBuilding, seed, "seed")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_MergeWholeBuilding, exhaustive, "exhaustive")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 
 double milliseconds(SeedMergeTimings::Duration duration) {
   return duration.count();

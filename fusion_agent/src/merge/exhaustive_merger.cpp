@@ -56,6 +56,8 @@ ExhaustiveMergerSettings loadExhaustiveMergerSettings(const Config& config) {
 ExhaustiveSearchSettings loadExhaustiveSearchSettings(const Config& config) {
   ExhaustiveSearchSettings s;
   s.cell_size = static_cast<int>(config.getInt("cell_size", s.cell_size, {1, 16}));
+  s.max_grid_cells =
+      static_cast<int>(config.getInt("max_grid_cells", s.max_grid_cells, {0, 100000}));
   s.rotation_step_cells =
       config.getDouble("rotation_step_cells", s.rotation_step_cells, {0.1, 10.0});
   s.wall_sigma = config.getDouble("wall_sigma", s.wall_sigma, {0.1, 100.0});

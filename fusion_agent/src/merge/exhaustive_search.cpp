@@ -317,12 +317,25 @@ void KeptLeaves::offer(const ExhaustiveHypothesis& leaf, const Eigen::Vector2d& 
   }
 }
 
-float sumAt(const float* base, const std::vector<std::ptrdiff_t>& offsets) {
-  float sum = 0.0f;
+/// A node's bound is the sum of the pyramid's values at its corner plus each point's offset;
+/// this sums four corners at once: base, base + right, base + up, base + right + up.
+void sumAtFour(const float* base, std::ptrdiff_t right, std::ptrdiff_t up,
+               const std::vector<std::ptrdiff_t>& offsets, float* sums) {
+  float sum0 = 0.0f;
+  float sum1 = 0.0f;
+  float sum2 = 0.0f;
+  float sum3 = 0.0f;
   for (const std::ptrdiff_t offset : offsets) {
-    sum += base[offset];
+    const float* at = base + offset;
+    sum0 += at[0];
+    sum1 += at[right];
+    sum2 += at[up];
+    sum3 += at[up + right];
   }
-  return sum;
+  sums[0] = sum0;
+  sums[1] = sum1;
+  sums[2] = sum2;
+  sums[3] = sum3;
 }
 
 class BranchAndBound {
@@ -331,13 +344,48 @@ class BranchAndBound {
                  const PointSet& set, int cell_size, KeptLeaves& kept)
       : pyramid_(pyramid), rotations_(rotations), set_(set), cell_size_(cell_size), kept_(kept) {}
 
-  double bound(int rotation, int tx, int ty, int level) const {
+  /// The nodes of `level` (each `top` translations a side) of one rotation whose corners lie in
+  /// [x_begin, x_end) × [y_begin, y_end), row by row; their bounds four at a time.
+  void addTopNodes(int rotation, int x_begin, int x_end, int y_begin, int y_end, int top, int level,
+                   std::vector<Node>& nodes) const {
+    const int columns = (x_end - x_begin + top - 1) / top;
+    const int rows = (y_end - y_begin + top - 1) / top;
+    std::vector<double> bounds(static_cast<std::size_t>((columns + 1) * (rows + 1)));
+    for (int row = 0; row < rows; row += 2) {
+      for (int column = 0; column < columns; column += 2) {
+        double four[4];
+        const Node corner{rotation, x_begin + column * top, y_begin + row * top, level + 1, 0.0};
+        childBounds(corner, top, four);
+        for (int i = 0; i < 4; ++i) {
+          bounds[static_cast<std::size_t>((row + (i >> 1)) * (columns + 1) + column + (i & 1))] =
+              four[i];
+        }
+      }
+    }
+    for (int row = 0; row < rows; ++row) {
+      for (int column = 0; column < columns; ++column) {
+        nodes.push_back({rotation, x_begin + column * top, y_begin + row * top, level,
+                         bounds[static_cast<std::size_t>(row * (columns + 1) + column)]});
+      }
+    }
+  }
+
+  /// The bounds of the four children of `node` (corners tx, tx + half; ty, ty + half), in one
+  /// pass over the points.
+  void childBounds(const Node& node, int half, double* bounds) const {
     const std::ptrdiff_t corner =
-        static_cast<std::ptrdiff_t>(ty + pyramid_.pad) * pyramid_.stride + (tx + pyramid_.pad);
-    const Rotation& turned = rotations_[static_cast<std::size_t>(rotation)];
-    const auto h = static_cast<std::size_t>(level);
-    return sumAt(pyramid_.walls[h].data() + corner, turned.walls) +
-           sumAt(pyramid_.free[h].data() + corner, turned.free);
+        static_cast<std::ptrdiff_t>(node.ty + pyramid_.pad) * pyramid_.stride +
+        (node.tx + pyramid_.pad);
+    const std::ptrdiff_t up = static_cast<std::ptrdiff_t>(half) * pyramid_.stride;
+    const Rotation& turned = rotations_[static_cast<std::size_t>(node.rotation)];
+    const auto h = static_cast<std::size_t>(node.level - 1);
+    float walls[4];
+    float free[4];
+    sumAtFour(pyramid_.walls[h].data() + corner, half, up, turned.walls, walls);
+    sumAtFour(pyramid_.free[h].data() + corner, half, up, turned.free, free);
+    for (int i = 0; i < 4; ++i) {
+      bounds[i] = static_cast<double>(walls[i] + free[i]);
+    }
   }
 
   void expand(const Node& node) {
@@ -349,12 +397,12 @@ class BranchAndBound {
       return;
     }
     const int half = 1 << (node.level - 1);
+    double bounds[4];
+    childBounds(node, half, bounds);
     Node children[4];
     for (int i = 0; i < 4; ++i) {
-      Node& child = children[i];
-      child = {node.rotation, node.tx + (i & 1) * half, node.ty + (i >> 1) * half, node.level - 1,
-               0.0};
-      child.bound = bound(child.rotation, child.tx, child.ty, child.level);
+      children[i] = {node.rotation, node.tx + (i & 1) * half, node.ty + (i >> 1) * half,
+                     node.level - 1, bounds[i]};
     }
     std::sort(std::begin(children), std::end(children),
               [](const Node& a, const Node& b) { return a.bound > b.bound; });
@@ -507,11 +555,8 @@ std::vector<ExhaustiveHypothesis> searchOneWay(const GridMap& from, const GridMa
   BranchAndBound search(pyramid, turns, set, cell_size, kept);
   std::vector<Node> nodes;
   for (int k = 0; k < static_cast<int>(turns.size()); ++k) {
-    for (int ty = -reach; ty < grid_to.height + reach; ty += top) {
-      for (int tx = -reach; tx < grid_to.width + reach; tx += top) {
-        nodes.push_back({k, tx, ty, settings.depth, search.bound(k, tx, ty, settings.depth)});
-      }
-    }
+    search.addTopNodes(k, -reach, grid_to.width + reach, -reach, grid_to.height + reach, top,
+                       settings.depth, nodes);
   }
   std::sort(nodes.begin(), nodes.end(),
             [](const Node& a, const Node& b) { return a.bound > b.bound; });
@@ -586,15 +631,28 @@ double exhaustiveScore(const GridMap& from, const GridMap& to, const GridTransfo
   return ExhaustiveScore(from, to, settings, classes).at(T_to_from);
 }
 
+int searchCellSize(const GridMap& from, const GridMap& to,
+                   const ExhaustiveSearchSettings& settings) {
+  const int cell_size = std::max(1, settings.cell_size);
+  if (settings.max_grid_cells <= 0) {
+    return cell_size;
+  }
+  const int side =
+      std::max({from.geometry.width, from.geometry.height, to.geometry.width, to.geometry.height});
+  return std::max(cell_size, (side + settings.max_grid_cells - 1) / settings.max_grid_cells);
+}
+
 std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const GridMap& to,
                                                    const ExhaustiveScore& score,
                                                    const ExhaustiveSearchSettings& settings,
                                                    const SimilaritySettings& classes) {
+  ExhaustiveSearchSettings search = settings;
+  search.cell_size = searchCellSize(from, to, settings);
   std::vector<ExhaustiveHypothesis> all =
-      searchOneWay(from, to, score.parts_->forward, settings, classes);
+      searchOneWay(from, to, score.parts_->forward, search, classes);
   if (settings.both_ways) {
     for (ExhaustiveHypothesis& reverse :
-         searchOneWay(to, from, score.parts_->backward, settings, classes)) {
+         searchOneWay(to, from, score.parts_->backward, search, classes)) {
       reverse.T_to_from = reverse.T_to_from.inverse();
       all.push_back(reverse);
     }

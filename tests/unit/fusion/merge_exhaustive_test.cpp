@@ -153,16 +153,47 @@ TEST(ExhaustiveMergerTest, CropsOfTwoBuildingsAreRefusedThroughTheDefaultChain) 
   }
 }
 
+TEST(ExhaustiveSearchTest, LargeMapsAreSearchedOnLargerCells) {
+  const GridMap small(GridGeometry{0.05, 400, 300, Eigen::Vector2d::Zero()}, GridMap::kUnknown);
+  const GridMap large(GridGeometry{0.05, 900, 1475, Eigen::Vector2d::Zero()}, GridMap::kUnknown);
+  ExhaustiveSearchSettings settings;  // 2 cells, at most 320 grid cells a side
+  EXPECT_EQ(searchCellSize(small, small, settings), 2);
+  EXPECT_EQ(searchCellSize(small, large, settings), 5);  // 1475 / 320, rounded up
+  EXPECT_EQ(searchCellSize(large, small, settings), 5);
+  settings.max_grid_cells = 0;
+  EXPECT_EQ(searchCellSize(small, large, settings), 2);
+  settings.max_grid_cells = 1000;
+  settings.cell_size = 3;
+  EXPECT_EQ(searchCellSize(small, large, settings), 3);
+}
+
+TEST(ExhaustiveMergerTest, MergesTurnedCropsOfAWholeBuildingOnLargerCells) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
+  // Two 700-cell windows of the ACES map, turned: crops of about 1000 cells a side, searched on
+  // 4-cell grids; the result must still be within 2 cells and 1° at full resolution.
+  const CropPair pair = {"freiburg-aces.pgm",
+                         0,
+                         {{150, 120}, 700, 0.6, {10, 20}, {30, 5}},
+                         {{380, 330}, 700, -0.35, {25, 3}, {4, 18}}};
+  const MergeCase merge_case = cut(pair);
+  ASSERT_EQ(searchCellSize(merge_case.a, merge_case.b, {}), 4);
+  ExhaustiveMerger merger;
+  merge_test::expectMergedWithinTwoCellsAndOneDegree(pair, merger);
+}
+
 TEST(ExhaustiveMergerTest, SettingsAreReadWithRangeChecks) {
-  const Config good =
-      Config::loadString("cell_size: 3\nhypotheses: 12\ndistinct_deg: 4\n", "exhaustive.yaml");
+  const Config good = Config::loadString(
+      "cell_size: 3\nhypotheses: 12\ndistinct_deg: 4\nmax_grid_cells: 500\n", "exhaustive.yaml");
   const ExhaustiveSearchSettings read = loadExhaustiveSearchSettings(good);
   EXPECT_EQ(read.cell_size, 3);
+  EXPECT_EQ(read.max_grid_cells, 500);
   EXPECT_EQ(read.hypotheses, 12);
   EXPECT_EQ(read.distinct_deg, 4.0);
   EXPECT_THROW(loadExhaustiveSearchSettings(Config::loadString("cell_size: 0\n", "x.yaml")),
                ConfigError);
   EXPECT_THROW(loadExhaustiveSearchSettings(Config::loadString("min_best_share: 2\n", "x.yaml")),
+               ConfigError);
+  EXPECT_THROW(loadExhaustiveSearchSettings(Config::loadString("max_grid_cells: -1\n", "x.yaml")),
                ConfigError);
   EXPECT_EQ(makeMerger("exhaustive")->name(), "exhaustive");
 }

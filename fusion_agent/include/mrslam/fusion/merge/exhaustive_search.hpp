@@ -5,12 +5,15 @@
 // finds the transforms of small overlaps that the seed pipeline never proposes.
 //
 // 1. `to` on a grid of `cell_size` cells (a grid cell is a wall when it holds an occupied cell,
-//    free when it holds known free cells only). Two value grids: what a wall of `from` scores
-//    there, exp(-d² / 2σ²) at distance d (grid cells) from `to`'s nearest wall while
-//    d ≤ `wall_reach`, else -`free_penalty` on free cells and 0 on unknown ones; and what a free
-//    cell of `from` scores there, `free_weight` on free cells, -`conflict_penalty` on walls and 0
-//    on unknown ones. Open floor of both maps agrees, walls meet walls, and either map's walls on
-//    the other's open floor cost much: the truth of a small overlap has few such conflicts.
+//    free when it holds known free cells only); maps whose longest side exceeds
+//    `max_grid_cells` grid cells get cells that much larger (searchCellSize: the work grows with
+//    the cube of the side, the memory with its square; step 6 still ends at full resolution). Two
+//    value grids: what a wall of `from` scores there, exp(-d² / 2σ²) at distance d (grid cells)
+//    from `to`'s nearest wall while d ≤ `wall_reach`, else -`free_penalty` on free cells and 0 on
+//    unknown ones; and what a free cell of `from` scores there, `free_weight` on free cells,
+//    -`conflict_penalty` on walls and 0 on unknown ones. Open floor of both maps agrees, walls meet
+//    walls, and either map's walls on the other's open floor cost much: the truth of a small
+//    overlap has few such conflicts.
 // 2. `from`'s walls and its free cells at least `free_margin` grid cells from its walls (a cell
 //    of misalignment must not put them on `to`'s walls), each an even sample of at most
 //    `max_points` / `max_free_points`, about the walls' centroid.
@@ -45,6 +48,8 @@ namespace mrslam::fusion {
 
 struct ExhaustiveSearchSettings {
   int cell_size = 2;                 ///< map cells per grid cell of the search
+  int max_grid_cells = 320;          ///< longest side of the search grid: larger maps get larger
+                                     ///< cells (0: always cell_size)
   double rotation_step_cells = 3.0;  ///< largest move of a point between two rotations, grid cells
   double wall_sigma = 1.0;           ///< σ of the wall likelihood, grid cells
   double wall_reach = 2.0;           ///< cells within this of a wall score the likelihood
@@ -96,6 +101,11 @@ class ExhaustiveScore {
                                                             const ExhaustiveSearchSettings&,
                                                             const SimilaritySettings&);
 };
+
+/// The grid cell of steps 1-5 for this pair: `cell_size`, or larger when the longest side of
+/// either map would exceed `max_grid_cells` grid cells.
+int searchCellSize(const GridMap& from, const GridMap& to,
+                   const ExhaustiveSearchSettings& settings);
 
 /// Steps 1-7: the best distinct transforms of `from` onto `to`, best first (empty when either
 /// map has no occupied cell); `score` is the pair's score of step 7.
