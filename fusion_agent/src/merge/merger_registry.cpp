@@ -11,7 +11,8 @@
 namespace mrslam::fusion {
 
 std::vector<std::string> mergerNames() {
-  return {"seed", "feature", "virtual", "exhaustive", "chain"};
+  // Best first, as measured by `mrslam merge-cases` (docs/merge_tuning.md).
+  return {"chain", "seed", "exhaustive", "virtual", "feature"};
 }
 
 std::string defaultMergerName() {

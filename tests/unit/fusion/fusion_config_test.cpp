@@ -83,12 +83,15 @@ TEST(FusionConfigTest, TheMergeMethodMakesItsMergerWithItsSettings) {
       loadFusionConfig(writeConfig("merge:\n  method: seed\n  seed:\n    canny_low: 20\n"));
   ASSERT_TRUE(seed.make_merger);
   EXPECT_EQ(seed.make_merger()->name(), "seed");
+  const FusionConfig chain = loadFusionConfig(writeConfig("merge:\n  method: chain\n"));
+  ASSERT_TRUE(chain.make_merger);
+  EXPECT_EQ(chain.make_merger()->name(), "chain");
   const FusionConfig feature = loadFusionConfig(writeConfig("merge:\n  method: feature\n"));
   ASSERT_TRUE(feature.make_merger);
   EXPECT_EQ(feature.make_merger()->name(), "feature");
   EXPECT_THAT(loadError("merge:\n  method: carpin\n"),
-              HasSubstr("fusion.yaml:2: merge.method: 'carpin' is not one of: seed, feature, "
-                        "virtual, exhaustive, chain, none"));
+              HasSubstr("fusion.yaml:2: merge.method: 'carpin' is not one of: chain, seed, "
+                        "exhaustive, virtual, feature, none"));
   EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    canny_low: -1\n"),
               HasSubstr("fusion.yaml:4: merge.seed.canny_low: -1 is out of range"));
   EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    bogus: 1\n"),
