@@ -41,13 +41,40 @@ std::optional<long long> runnerUp(const std::vector<ShiftBalance>& balances,
   return runner_up;
 }
 
+// wallBalance() at every shift of T_to_from within ±reach, in row order (dy, then dx): each
+// map's wall samples are turned once for all the shifts.
+std::vector<long long> shiftedBalances(const GridTransform& T_to_from, int reach,
+                                       const SearchInputs& inputs, const ComparisonTables& tables) {
+  std::vector<GridTransform> forward;
+  std::vector<GridTransform> backward;
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      GridTransform shifted = T_to_from;
+      shifted.t_cells += Eigen::Vector2d(dx, dy);
+      forward.push_back(shifted);
+      backward.push_back(shifted.inverse());
+    }
+  }
+  const std::vector<StructureAgreement> onto_to =
+      structureAgreements(inputs.occupied_from_samples, inputs.to, forward, tables);
+  const std::vector<StructureAgreement> onto_from =
+      structureAgreements(inputs.occupied_to_samples, inputs.from, backward, tables);
+  std::vector<long long> balances;
+  for (std::size_t k = 0; k < forward.size(); ++k) {
+    balances.push_back(onto_to[k].near - onto_to[k].far + onto_from[k].near - onto_from[k].far);
+  }
+  return balances;
+}
+
 }  // namespace
 
 WallSearch anchorOnWalls(const GridTransform& T_to_from, int reach, const SearchInputs& inputs,
                          const ComparisonTables& tables) {
   WallSearch search;
   search.best = T_to_from;
-  const long long unshifted = wallBalance(T_to_from, inputs, tables);
+  const std::vector<long long> all = shiftedBalances(T_to_from, reach, inputs, tables);
+  const int side = 2 * reach + 1;
+  const long long unshifted = all[static_cast<std::size_t>(reach * side + reach)];
   search.best_balance = unshifted;
   Eigen::Vector2i best_shift = Eigen::Vector2i::Zero();
   std::vector<ShiftBalance> balances;
@@ -56,8 +83,7 @@ WallSearch anchorOnWalls(const GridTransform& T_to_from, int reach, const Search
       const Eigen::Vector2i shift(dx, dy);
       GridTransform shifted = T_to_from;
       shifted.t_cells += shift.cast<double>();
-      const long long balance =
-          dx == 0 && dy == 0 ? unshifted : wallBalance(shifted, inputs, tables);
+      const long long balance = all[static_cast<std::size_t>((dy + reach) * side + dx + reach)];
       balances.emplace_back(shift, balance);
       if (balance > search.best_balance) {
         search.best_balance = balance;
