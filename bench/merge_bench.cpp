@@ -49,6 +49,17 @@ double percentileOf(std::vector<double> values, double fraction) {
   return values[rank];
 }
 
+/// One merge, its wall-clock time appended to `times_ms`.
+MergeResult timedMerge(MapMerger& merger, const GridMap& from, const GridMap& to,
+                       std::vector<double>& times_ms) {
+  const auto start = std::chrono::steady_clock::now();
+  MergeResult result = merger.merge(from, to);
+  times_ms.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  benchmark::DoNotOptimize(result);
+  return result;
+}
+
 /// Within 2 cells (at the overlap's centre) and 1° of the truth.
 bool withinTolerance(const MergeResult& result, const merge_test::KnownCase& pair) {
   const double cells = (result.T_to_from.apply(pair.overlap_centre_from) -
@@ -72,12 +83,7 @@ void BM_Merge400(benchmark::State& state, const char* method, const char* file) 
   std::size_t next = 0;
   for (auto _ : state) {
     const merge_test::KnownCase& pair = known[next++ % known.size()];
-    const auto start = std::chrono::steady_clock::now();
-    const MergeResult result = merger->merge(pair.from, pair.to);
-    times.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
-    benchmark::DoNotOptimize(result);
+    const MergeResult result = timedMerge(*merger, pair.from, pair.to, times);
     correct += withinTolerance(result, pair) ? 1 : 0;
   }
   state.counters["median_ms"] = percentileOf(times, 0.5);
@@ -112,12 +118,7 @@ void BM_MergeWholeBuilding(benchmark::State& state, const char* method) {
   std::vector<double> times;
   int correct = 0;
   for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    const MergeResult result = merger->merge(pair.a, pair.b);
-    times.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
-    benchmark::DoNotOptimize(result);
+    const MergeResult result = timedMerge(*merger, pair.a, pair.b, times);
     correct += result.accepted && isCorrect(caseError(pair, result.T_to_from)) ? 1 : 0;
   }
   state.counters["median_ms"] = percentileOf(times, 0.5);
@@ -149,12 +150,7 @@ void BM_SeedMerge400(benchmark::State& state, const char* file) {
   std::size_t next = 0;
   for (auto _ : state) {
     const merge_test::KnownCase& pair = known[next++ % known.size()];
-    const auto start = std::chrono::steady_clock::now();
-    const MergeResult result = merger.merge(pair.from, pair.to);
-    times.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
-    benchmark::DoNotOptimize(result);
+    const MergeResult result = timedMerge(merger, pair.from, pair.to, times);
     accepted += result.accepted ? 1 : 0;
     const SeedMergeTimings& last = merger.lastTimings();
     total.edges += last.edges;
