@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -38,6 +39,24 @@ inline int finish(tools::ChildProcess& agent, double timeout_s) {
     return -1;
   }
   return *code;
+}
+
+/// A program run to its end: its exit code and all it printed.
+struct CommandRun {
+  int exit_code = -1;  ///< -1: it did not end in time
+  std::string output;  ///< standard output and error together
+};
+
+/// Runs a program of the build tree to its end (killed after `timeout_s`), its output in
+/// `log_path`.
+inline CommandRun runToEnd(const std::string& program, const std::vector<std::string>& arguments,
+                           const std::string& log_path, double timeout_s) {
+  auto process = startAgent(program, arguments, log_path);
+  CommandRun run;
+  run.exit_code = finish(*process, timeout_s);
+  std::ifstream in(log_path);
+  run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return run;
 }
 
 /// The end of an agent's log, for failure messages.

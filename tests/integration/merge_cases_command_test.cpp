@@ -14,21 +14,10 @@
 namespace mrslam::test {
 namespace {
 
-struct CommandRun {
-  int exit_code = -1;
-  std::string output;  ///< standard output and error together
-};
-
 CommandRun runCases(std::vector<std::string> arguments, const std::filesystem::path& folder) {
   arguments.insert(arguments.end(), {"--maps", sharedDataPath("maps"), "--cases", "6",
                                      "--negatives", "2", "--methods", "feature"});
-  const std::string log = (folder / "cases.log").string();
-  auto process = startAgent("tools/mrslam_merge_cases", arguments, log);
-  CommandRun run;
-  run.exit_code = finish(*process, 120.0);
-  std::ifstream in(log);
-  run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return run;
+  return runToEnd("tools/mrslam_merge_cases", arguments, (folder / "cases.log").string(), 120.0);
 }
 
 nlohmann::json jsonLine(const std::string& output) {

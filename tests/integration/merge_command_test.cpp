@@ -24,20 +24,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-struct CommandRun {
-  int exit_code = -1;
-  std::string output;  ///< standard output and error together
-};
-
 CommandRun runMerge(const std::vector<std::string>& arguments,
                     const std::filesystem::path& folder) {
-  const std::string log = (folder / "merge.log").string();
-  auto process = startAgent("tools/mrslam_merge", arguments, log);
-  CommandRun run;
-  run.exit_code = finish(*process, 120.0);
-  std::ifstream in(log);
-  run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return run;
+  return runToEnd("tools/mrslam_merge", arguments, (folder / "merge.log").string(), 120.0);
 }
 
 /// The last line of the output that holds a JSON object.
