@@ -1,11 +1,11 @@
 // Merge costs: one merge of two 400 × 400 crops of a real map (Intel lab, ACES), turned and
 // shifted by a seeded random transform with 40-100 % overlap, on one core. BM_SeedMerge400
 // reports the median of one merge over the cases and each block's share of the time
-// (SeedMerger::lastTimings); BM_Merge400 the median, the 90th percentile and the share merged
-// within 2 cells and 1° of the truth for any merger of the registry (the feature baseline, the
-// exhaustive search, the chain) on the same cases. BM_MergeWholeBuilding: two turned 700-cell
-// windows of the ACES map (crops of about 1000 cells a side, which the exhaustive search takes on
-// larger cells, max_grid_cells).
+// (SeedMerger::lastTimings), BM_FeatureMerge400 the same for the feature baseline; BM_Merge400
+// the median, the 90th percentile and the share merged within 2 cells and 1° of the truth for
+// other mergers of the registry (the exhaustive search, the chain) on the same cases.
+// BM_MergeWholeBuilding: two turned 700-cell windows of the ACES map (crops of about 1000 cells a
+// side, which the exhaustive search takes on larger cells, max_grid_cells).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "../tests/unit/fusion/merge_test_maps.hpp"
+#include "mrslam/fusion/merge/feature_merger.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
 #include "mrslam/fusion/merge/merger_registry.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
@@ -91,18 +92,51 @@ void BM_Merge400(benchmark::State& state, const char* method, const char* file) 
   state.counters["correct_share"] =
       static_cast<double>(correct) / static_cast<double>(times.size());
 }
-BENCHMARK_CAPTURE(BM_Merge400, feature_intel, "feature", "carpin-intel.txt")
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3 * kCases);
-BENCHMARK_CAPTURE(BM_Merge400, feature_aces, "feature", "freiburg-aces.pgm")
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(3 * kCases);
 BENCHMARK_CAPTURE(BM_Merge400, exhaustive_intel, "exhaustive", "carpin-intel.txt")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
 BENCHMARK_CAPTURE(BM_Merge400, chain_intel, "chain", "carpin-intel.txt")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
+
+/// The feature baseline on the same cases: the median, the share within tolerance and each
+/// step's share of the time (FeatureMerger::lastTimings).
+void BM_FeatureMerge400(benchmark::State& state, const char* file) {
+  cv::setNumThreads(1);  // one core
+  const std::vector<merge_test::KnownCase> known = cases(file);
+  if (known.empty()) {
+    state.SkipWithError("needs ../shared/data/maps");
+    return;
+  }
+  FeatureMerger merger(FeatureMergerSettings{});
+  std::vector<double> times;
+  FeatureMergeTimings total;
+  int correct = 0;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const merge_test::KnownCase& pair = known[next++ % known.size()];
+    correct += withinTolerance(timedMerge(merger, pair.from, pair.to, times), pair) ? 1 : 0;
+    const FeatureMergeTimings& last = merger.lastTimings();
+    total.detection += last.detection;
+    total.matching += last.matching;
+    total.ransac += last.ransac;
+    total.verification += last.verification;
+  }
+  state.counters["median_ms"] = percentileOf(times, 0.5);
+  state.counters["correct_share"] =
+      static_cast<double>(correct) / static_cast<double>(times.size());
+  const double sum = (total.detection + total.matching + total.ransac + total.verification).count();
+  state.counters["detection"] = total.detection.count() / sum;
+  state.counters["matching"] = total.matching.count() / sum;
+  state.counters["ransac"] = total.ransac.count() / sum;
+  state.counters["verification"] = total.verification.count() / sum;
+}
+BENCHMARK_CAPTURE(BM_FeatureMerge400, intel, "carpin-intel.txt")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3 * kCases);
+BENCHMARK_CAPTURE(BM_FeatureMerge400, freiburg_aces, "freiburg-aces.pgm")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3 * kCases);
 
 void BM_MergeWholeBuilding(benchmark::State& state, const char* method) {
   cv::setNumThreads(1);  // one core

@@ -1,5 +1,6 @@
 #include "mrslam/fusion/merge/feature_merger.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/features2d.hpp>
@@ -109,6 +110,15 @@ MergeResult refused(std::string reason, int trials) {
   return result;
 }
 
+using Clock = std::chrono::steady_clock;
+
+/// Adds the time since `start` to `total` and restarts the clock.
+void lap(Clock::time_point& start, FeatureMergeTimings::Duration& total) {
+  const Clock::time_point now = Clock::now();
+  total += now - start;
+  start = now;
+}
+
 std::string describe(const char* what, double value, const char* bar, double limit) {
   std::ostringstream text;
   text << what << ' ' << value << ' ' << bar << ' ' << limit;
@@ -135,9 +145,14 @@ FeatureMergerSettings loadFeatureMergerSettings(const Config& config) {
 FeatureMerger::FeatureMerger(const FeatureMergerSettings& settings) : settings_(settings) {}
 
 MergeResult FeatureMerger::merge(const GridMap& from, const GridMap& to) {
+  timings_ = {};
+  Clock::time_point clock = Clock::now();
   const cv::Ptr<cv::Feature2D> detector = makeDetector(settings_);
-  const Matches matches =
-      matchFeatures(detect(from, *detector), detect(to, *detector), settings_.ratio_test);
+  const Features features_from = detect(from, *detector);
+  const Features features_to = detect(to, *detector);
+  lap(clock, timings_.detection);
+  const Matches matches = matchFeatures(features_from, features_to, settings_.ratio_test);
+  lap(clock, timings_.matching);
   const int match_count = static_cast<int>(matches.from.size());
   if (match_count < settings_.min_inliers) {
     return refused(describe("matches", match_count, "<", settings_.min_inliers), match_count);
@@ -146,6 +161,7 @@ MergeResult FeatureMerger::merge(const GridMap& from, const GridMap& to) {
   const cv::Mat similarity = cv::estimateAffinePartial2D(
       matches.from, matches.to, inlier, cv::RANSAC, settings_.ransac_threshold_cells, 5000, 0.995);
   const int inliers = cv::countNonZero(inlier);
+  lap(clock, timings_.ransac);
   if (similarity.empty() || inliers < settings_.min_inliers) {
     return refused(describe("RANSAC inliers", inliers, "<", settings_.min_inliers), match_count);
   }
@@ -164,6 +180,7 @@ MergeResult FeatureMerger::merge(const GridMap& from, const GridMap& to) {
   const OverlapScore score = scoreOverlap(from, to, result.T_to_from);
   result.verification = score.verification();
   result.entropy = score.entropy_bits;
+  lap(clock, timings_.verification);
   if (result.verification < settings_.min_verification) {
     result.reason = describe("verification", result.verification, "<", settings_.min_verification);
     return result;

@@ -91,6 +91,27 @@ TEST(FeatureMergerTest, RefusesMapsWithoutFeatures) {
   }
 }
 
+TEST(FeatureMergerTest, TimesTheStepsItReached) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-intel.txt");
+  const MergeCase c = intelCase();
+  FeatureMerger merger(FeatureMergerSettings{});
+  ASSERT_TRUE(merger.merge(c.a, c.b).accepted);
+  const FeatureMergeTimings full = merger.lastTimings();
+  EXPECT_GT(full.detection.count(), 0.0);
+  EXPECT_GT(full.matching.count(), 0.0);
+  EXPECT_GT(full.ransac.count(), 0.0);
+  EXPECT_GT(full.verification.count(), 0.0);
+  // Refused at the matches: the later steps did not run, and the last merge's times are gone.
+  GridGeometry geometry;
+  geometry.width = 200;
+  geometry.height = 150;
+  const GridMap free(geometry, GridMap::kFree);
+  ASSERT_FALSE(merger.merge(free, free).accepted);
+  EXPECT_GT(merger.lastTimings().detection.count(), 0.0);
+  EXPECT_EQ(merger.lastTimings().ransac.count(), 0.0);
+  EXPECT_EQ(merger.lastTimings().verification.count(), 0.0);
+}
+
 TEST(FeatureMergerTest, SettingsAreCheckedWhereTheyAreRead) {
   const FeatureMergerSettings read = loadFeatureMergerSettings(
       settingsOf("detector: akaze\nratio_test: 0.7\nmin_inliers: 20\nmin_verification: 0.8\n"));

@@ -10,6 +10,7 @@
 //   5. confidence = inliers / (8 + 0.3 · matches) (Brown & Lowe's match test) against a bar;
 //   6. a rigid least-squares refit on the inliers gives T_to_from; V and H as the tools score them.
 
+#include <chrono>
 #include <string>
 
 #include "mrslam/common/config.hpp"
@@ -32,14 +33,25 @@ struct FeatureMergerSettings {
 /// ConfigError for a wrong type or an out-of-range value.
 FeatureMergerSettings loadFeatureMergerSettings(const Config& config);
 
+/// Time spent in each step by the last merge (zero for the steps it did not reach).
+struct FeatureMergeTimings {
+  using Duration = std::chrono::duration<double, std::milli>;
+  Duration detection{};     ///< steps 1-2, both maps
+  Duration matching{};      ///< step 3
+  Duration ransac{};        ///< steps 4-5
+  Duration verification{};  ///< step 6
+};
+
 class FeatureMerger : public MapMerger {
  public:
   explicit FeatureMerger(const FeatureMergerSettings& settings);
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "feature"; }
+  const FeatureMergeTimings& lastTimings() const { return timings_; }
 
  private:
   const FeatureMergerSettings settings_;
+  FeatureMergeTimings timings_;
 };
 
 }  // namespace mrslam::fusion
