@@ -71,21 +71,35 @@ bool withinTolerance(const MergeResult& result, const merge_test::KnownCase& pai
   return result.accepted && cells <= 2.0 && turn <= M_PI / 180.0;
 }
 
-void BM_Merge400(benchmark::State& state, const char* method, const char* file) {
+/// Runs `merger` on the file's cases in turn, one merge per iteration on one core, each time
+/// appended to `times_ms` and `after(result, pair)` called; false (the benchmark skipped) when
+/// the shared maps are absent.
+template <typename After>
+bool mergeCases(benchmark::State& state, const char* file, MapMerger& merger,
+                std::vector<double>& times_ms, After after) {
   cv::setNumThreads(1);  // one core
   const std::vector<merge_test::KnownCase> known = cases(file);
   if (known.empty()) {
     state.SkipWithError("needs ../shared/data/maps");
-    return;
+    return false;
   }
-  const std::unique_ptr<MapMerger> merger = makeMerger(method);
-  std::vector<double> times;
-  int correct = 0;
   std::size_t next = 0;
   for (auto _ : state) {
     const merge_test::KnownCase& pair = known[next++ % known.size()];
-    const MergeResult result = timedMerge(*merger, pair.from, pair.to, times);
-    correct += withinTolerance(result, pair) ? 1 : 0;
+    after(timedMerge(merger, pair.from, pair.to, times_ms), pair);
+  }
+  return true;
+}
+
+void BM_Merge400(benchmark::State& state, const char* method, const char* file) {
+  const std::unique_ptr<MapMerger> merger = makeMerger(method);
+  std::vector<double> times;
+  int correct = 0;
+  if (!mergeCases(state, file, *merger, times,
+                  [&](const MergeResult& result, const merge_test::KnownCase& pair) {
+                    correct += withinTolerance(result, pair) ? 1 : 0;
+                  })) {
+    return;
   }
   state.counters["median_ms"] = percentileOf(times, 0.5);
   state.counters["p90_ms"] = percentileOf(times, 0.9);
@@ -102,25 +116,20 @@ BENCHMARK_CAPTURE(BM_Merge400, chain_intel, "chain", "carpin-intel.txt")
 /// The feature baseline on the same cases: the median, the share within tolerance and each
 /// step's share of the time (FeatureMerger::lastTimings).
 void BM_FeatureMerge400(benchmark::State& state, const char* file) {
-  cv::setNumThreads(1);  // one core
-  const std::vector<merge_test::KnownCase> known = cases(file);
-  if (known.empty()) {
-    state.SkipWithError("needs ../shared/data/maps");
-    return;
-  }
   FeatureMerger merger(FeatureMergerSettings{});
   std::vector<double> times;
   FeatureMergeTimings total;
   int correct = 0;
-  std::size_t next = 0;
-  for (auto _ : state) {
-    const merge_test::KnownCase& pair = known[next++ % known.size()];
-    correct += withinTolerance(timedMerge(merger, pair.from, pair.to, times), pair) ? 1 : 0;
-    const FeatureMergeTimings& last = merger.lastTimings();
-    total.detection += last.detection;
-    total.matching += last.matching;
-    total.ransac += last.ransac;
-    total.verification += last.verification;
+  if (!mergeCases(state, file, merger, times,
+                  [&](const MergeResult& result, const merge_test::KnownCase& pair) {
+                    correct += withinTolerance(result, pair) ? 1 : 0;
+                    const FeatureMergeTimings& last = merger.lastTimings();
+                    total.detection += last.detection;
+                    total.matching += last.matching;
+                    total.ransac += last.ransac;
+                    total.verification += last.verification;
+                  })) {
+    return;
   }
   state.counters["median_ms"] = percentileOf(times, 0.5);
   state.counters["correct_share"] =
@@ -171,31 +180,25 @@ double milliseconds(SeedMergeTimings::Duration duration) {
 }
 
 void BM_SeedMerge400(benchmark::State& state, const char* file) {
-  cv::setNumThreads(1);  // one core
-  const std::vector<merge_test::KnownCase> known = cases(file);
-  if (known.empty()) {
-    state.SkipWithError("needs ../shared/data/maps");
-    return;
-  }
   SeedMerger merger;
   std::vector<double> times;
   SeedMergeTimings total;
   int accepted = 0;
-  std::size_t next = 0;
-  for (auto _ : state) {
-    const merge_test::KnownCase& pair = known[next++ % known.size()];
-    const MergeResult result = timedMerge(merger, pair.from, pair.to, times);
-    accepted += result.accepted ? 1 : 0;
-    const SeedMergeTimings& last = merger.lastTimings();
-    total.edges += last.edges;
-    total.radon += last.radon;
-    total.segments += last.segments;
-    total.correlation += last.correlation;
-    total.poses += last.poses;
-    total.translation += last.translation;
-    total.verification += last.verification;
-    total.fallback += last.fallback;
-    total.global += last.global;
+  if (!mergeCases(state, file, merger, times,
+                  [&](const MergeResult& result, const merge_test::KnownCase&) {
+                    accepted += result.accepted ? 1 : 0;
+                    const SeedMergeTimings& last = merger.lastTimings();
+                    total.edges += last.edges;
+                    total.radon += last.radon;
+                    total.segments += last.segments;
+                    total.correlation += last.correlation;
+                    total.poses += last.poses;
+                    total.translation += last.translation;
+                    total.verification += last.verification;
+                    total.fallback += last.fallback;
+                    total.global += last.global;
+                  })) {
+    return;
   }
   std::nth_element(times.begin(), times.begin() + static_cast<long>(times.size() / 2), times.end());
   state.counters["median_ms"] = times[times.size() / 2];

@@ -4,26 +4,11 @@
 #include <sstream>
 
 #include "mrslam/fusion/merge/overlap_score.hpp"
+#include "mrslam/fusion/merge/similarity.hpp"
 
 namespace mrslam::fusion {
 
 namespace {
-
-/// The centre of the known cells of `map` (its grid centre when none is known).
-Eigen::Vector2d knownCentre(const GridMap& map) {
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  double count = 0.0;
-  for (int y = 0; y < map.geometry.height; ++y) {
-    for (int x = 0; x < map.geometry.width; ++x) {
-      if (map.at(x, y) != GridMap::kUnknown) {
-        sum += Eigen::Vector2d(x, y);
-        count += 1.0;
-      }
-    }
-  }
-  return count > 0.0 ? Eigen::Vector2d(sum / count)
-                     : Eigen::Vector2d(0.5 * map.geometry.width, 0.5 * map.geometry.height);
-}
 
 std::vector<GridTransform> inverses(const std::vector<GridTransform>& transforms) {
   std::vector<GridTransform> result;
@@ -103,7 +88,7 @@ MergeResult ExhaustiveMerger::merge(const GridMap& from, const GridMap& to) {
   if (!result.accepted) {
     return result;
   }
-  const Eigen::Vector2d pivot = knownCentre(from);
+  const Eigen::Vector2d pivot = knownCentroid(from);
   if (settings_.check_own_score) {
     checkOwnScore(from, to, score, pivot, result);
   }

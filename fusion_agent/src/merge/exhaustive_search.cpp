@@ -468,9 +468,9 @@ ExhaustiveHypothesis bestNear(const Score& score, const GridTransform& T_to_from
 /// alike), for the last steps of a hypothesis.
 class FineScorer {
  public:
-  FineScorer(const GridMap& from, const GridMap& to, const ExhaustiveSearchSettings& settings,
-             const SimilaritySettings& classes)
-      : grid_to_(toSearchGrid(to, 1, classes)) {
+  /// `from` and `to` on grids of one map cell (toSearchGrid with cell size 1).
+  FineScorer(const SearchGrid& from, const SearchGrid& to, const ExhaustiveSearchSettings& settings)
+      : grid_to_(to) {
     ExhaustiveSearchSettings fine = settings;
     const int cell_size = std::max(1, settings.cell_size);
     fine.cell_size = 1;
@@ -479,7 +479,7 @@ class FineScorer {
     fine.free_margin = std::max(1, settings.free_margin * cell_size);
     walls_ = valueGrid(grid_to_, 0, grid_to_.width, grid_to_.height, fine);
     free_ = freeValueGrid(grid_to_, 0, grid_to_.width, grid_to_.height, fine);
-    points_ = pointSet(toSearchGrid(from, 1, classes), fine);
+    points_ = pointSet(from, fine);
   }
 
   double score(const GridTransform& T_to_from) const {
@@ -534,15 +534,13 @@ std::vector<ExhaustiveHypothesis> refined(const std::vector<ExhaustiveHypothesis
   return result;
 }
 
-/// Steps 1-6 one way: the B&B's best distinct leaves of `from` onto `to`, refined by `fine`
-/// (the full-resolution score of `from` onto `to`).
-std::vector<ExhaustiveHypothesis> searchOneWay(const GridMap& from, const GridMap& to,
-                                               const FineScorer& fine,
-                                               const ExhaustiveSearchSettings& settings,
-                                               const SimilaritySettings& classes) {
+/// Steps 1-6 one way: the B&B's best distinct leaves of `from` onto `to` (both on grids of
+/// settings.cell_size), refined by `fine` (the full-resolution score of `from` onto `to`).
+std::vector<ExhaustiveHypothesis> searchOneWay(const SearchGrid& grid_from,
+                                               const SearchGrid& grid_to, const FineScorer& fine,
+                                               const ExhaustiveSearchSettings& settings) {
   const int cell_size = std::max(1, settings.cell_size);
-  const SearchGrid grid_to = toSearchGrid(to, cell_size, classes);
-  const PointSet set = pointSet(toSearchGrid(from, cell_size, classes), settings);
+  const PointSet set = pointSet(grid_from, settings);
   if (set.walls.empty() || std::none_of(grid_to.classes.begin(), grid_to.classes.end(),
                                         [](GridClass cell) { return cell == GridClass::kWall; })) {
     return {};
@@ -606,9 +604,12 @@ struct ExhaustiveScore::Parts {
 
 ExhaustiveScore::ExhaustiveScore(const GridMap& from, const GridMap& to,
                                  const ExhaustiveSearchSettings& settings,
-                                 const SimilaritySettings& classes)
-    : parts_(new Parts{FineScorer(from, to, settings, classes),
-                       FineScorer(to, from, settings, classes)}) {}
+                                 const SimilaritySettings& classes) {
+  const SearchGrid grid_from = toSearchGrid(from, 1, classes);  // each map once, for both ways
+  const SearchGrid grid_to = toSearchGrid(to, 1, classes);
+  parts_.reset(new Parts{FineScorer(grid_from, grid_to, settings),
+                         FineScorer(grid_to, grid_from, settings)});
+}
 
 ExhaustiveScore::~ExhaustiveScore() = default;
 
@@ -648,11 +649,13 @@ std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const Gr
                                                    const SimilaritySettings& classes) {
   ExhaustiveSearchSettings search = settings;
   search.cell_size = searchCellSize(from, to, settings);
+  const SearchGrid grid_from = toSearchGrid(from, search.cell_size, classes);  // for both ways
+  const SearchGrid grid_to = toSearchGrid(to, search.cell_size, classes);
   std::vector<ExhaustiveHypothesis> all =
-      searchOneWay(from, to, score.parts_->forward, search, classes);
+      searchOneWay(grid_from, grid_to, score.parts_->forward, search);
   if (settings.both_ways) {
     for (ExhaustiveHypothesis& reverse :
-         searchOneWay(to, from, score.parts_->backward, search, classes)) {
+         searchOneWay(grid_to, grid_from, score.parts_->backward, search)) {
       reverse.T_to_from = reverse.T_to_from.inverse();
       all.push_back(reverse);
     }

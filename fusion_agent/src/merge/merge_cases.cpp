@@ -5,6 +5,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "mrslam/fusion/merge/similarity.hpp"
+
 namespace mrslam::fusion {
 namespace {
 
@@ -277,17 +279,7 @@ std::vector<MergeCase> generateCases(const std::vector<SourceMap>& sources,
 }
 
 CaseError caseError(const MergeCase& merge_case, const GridTransform& T_b_a) {
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  double known = 0.0;
-  for (int y = 0; y < merge_case.a.geometry.height; ++y) {
-    for (int x = 0; x < merge_case.a.geometry.width; ++x) {
-      if (merge_case.a.at(x, y) >= 0) {
-        centroid += Eigen::Vector2d(x, y);
-        known += 1.0;
-      }
-    }
-  }
-  centroid /= std::max(known, 1.0);
+  const Eigen::Vector2d centroid = knownCentroid(merge_case.a);
   CaseError error;
   const double difference = T_b_a.theta_rad - merge_case.T_b_a.theta_rad;
   error.angle_rad = std::abs(std::remainder(difference, 2.0 * kPi));

@@ -237,12 +237,13 @@ TranslationSearch searchAround(const GridTransform& T_to_from, const SearchInput
 
 namespace {
 
-// The lesser structure agreement of the two directions: `from`'s sampled walls on `to`'s and
-// `to`'s walls on `from`'s (a wrong transform often passes one direction only).
-double twoWayStructure(const GridTransform& T_to_from, const SearchInputs& inputs,
-                       const ComparisonTables& tables) {
+// The lesser structure agreement of the two directions: the walls among `from_samples` (the
+// coarse sample for a candidate, every known cell in block 9) on `to`'s and all of `to`'s walls
+// on `from`'s (a wrong transform often passes one direction only).
+double twoWayStructure(const std::vector<CellSample>& from_samples, const GridTransform& T_to_from,
+                       const SearchInputs& inputs, const ComparisonTables& tables) {
   return std::min(
-      structureAgreement(inputs.coarse_samples, inputs.to, T_to_from, tables).index(),
+      structureAgreement(from_samples, inputs.to, T_to_from, tables).index(),
       structureAgreement(inputs.occupied_to, inputs.from, T_to_from.inverse(), tables).index());
 }
 
@@ -344,7 +345,8 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
       candidate.T_to_from = search.best_similarity;
       candidate.similarity = search.at_best_similarity.similarity();
     }
-    candidate.structure = twoWayStructure(candidate.T_to_from, inputs, tables);
+    candidate.structure =
+        twoWayStructure(inputs.coarse_samples, candidate.T_to_from, inputs, tables);
     candidate.overlap_cells = overlapCells(candidate.T_to_from, inputs, tables);
     candidates.push_back(candidate);
   }
@@ -442,13 +444,6 @@ Refined settleBySimilarity(const GridTransform& polished, const SearchInputs& in
 
 }  // namespace
 
-double fullStructure(const GridTransform& T_to_from, const SearchInputs& inputs,
-                     const ComparisonTables& tables) {
-  return std::min(
-      structureAgreement(inputs.all_samples, inputs.to, T_to_from, tables).index(),
-      structureAgreement(inputs.occupied_to, inputs.from, T_to_from.inverse(), tables).index());
-}
-
 Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                  const ComparisonTables& tables, const SeedMergerSettings& settings) {
   TranslationSearch coarse;
@@ -458,7 +453,7 @@ Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                                              inputs, tables, settings, coarse);
   const TranslationSearch fine_entropy =
       searchTranslation(inputs.fine_samples, inputs.to, coarse.least_entropy, 1, tables);
-  refined.structure = fullStructure(refined.T_to_from, inputs, tables);
+  refined.structure = twoWayStructure(inputs.all_samples, refined.T_to_from, inputs, tables);
   refined.least_entropy = fine_entropy.least_entropy;
   refined.entropy_gap_cells = (refined.T_to_from.t_cells - refined.least_entropy.t_cells).norm();
   return refined;

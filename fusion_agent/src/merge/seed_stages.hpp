@@ -161,11 +161,6 @@ struct Refined {
 
 /// Rotation polish (step 7 of seed_merger.hpp), block 8 again at the polished angle, then ±1 cell
 /// on all known cells for both the best similarity and the least entropy.
-/// Block 9's structure agreement: the lesser of `from`'s walls (all known cells) on `to`'s and
-/// all of `to`'s walls on `from`'s.
-double fullStructure(const GridTransform& T_to_from, const SearchInputs& inputs,
-                     const ComparisonTables& tables);
-
 Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                  const ComparisonTables& tables, const SeedMergerSettings& settings);
 

@@ -316,6 +316,20 @@ std::vector<StructureAgreement> structureAgreements(const std::vector<CellSample
   return all;
 }
 
+Eigen::Vector2d knownCentroid(const GridMap& map) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  double known = 0.0;
+  for (int y = 0; y < map.geometry.height; ++y) {
+    for (int x = 0; x < map.geometry.width; ++x) {
+      if (map.at(x, y) != GridMap::kUnknown) {
+        sum += Eigen::Vector2d(x, y);
+        known += 1.0;
+      }
+    }
+  }
+  return sum / std::max(known, 1.0);
+}
+
 double mapEntropy(const GridMap& map, const ComparisonTables& tables) {
   double entropy = 0.0;
   for (const std::int8_t value : map.cells) {

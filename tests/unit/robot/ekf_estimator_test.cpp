@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "full_turn_scan.hpp"
+
 namespace mrslam::robot {
 namespace {
 
@@ -236,25 +238,19 @@ TEST(EkfEstimatorTest, ImuGapsGiveNoYawRateUpdate) {
 
 // A laser at (x, y), heading 0, in the room −3 ≤ x ≤ 3, −2 ≤ y ≤ 2: 360 beams over the full turn.
 LaserScan roomScan(std::int64_t t_ns, double x, double y) {
-  LaserScan scan;
-  scan.stamp = Stamp{t_ns};
-  scan.angle_min_rad = -M_PI;
-  scan.angle_increment_rad = M_PI / 180.0;
-  scan.range_min_m = 0.02;
-  scan.range_max_m = 30.0;
-  for (int i = 0; i < 360; ++i) {
-    const double angle = scan.beamAngle(static_cast<std::size_t>(i));
+  LaserScan scan = test::fullTurnScan([x, y](double angle) {
     const double c = std::cos(angle);
     const double s = std::sin(angle);
-    double range = scan.range_max_m;
+    double range = test::kFullTurnRangeMaxM;
     if (std::abs(c) > 1e-9) {
       range = std::min(range, ((c > 0.0 ? 3.0 : -3.0) - x) / c);
     }
     if (std::abs(s) > 1e-9) {
       range = std::min(range, ((s > 0.0 ? 2.0 : -2.0) - y) / s);
     }
-    scan.ranges_m.push_back(static_cast<float>(range));
-  }
+    return static_cast<float>(range);
+  });
+  scan.stamp = Stamp{t_ns};
   return scan;
 }
 

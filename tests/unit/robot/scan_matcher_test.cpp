@@ -7,6 +7,8 @@
 #include <limits>
 #include <optional>
 
+#include "full_turn_scan.hpp"
+
 namespace mrslam::robot {
 namespace {
 
@@ -15,13 +17,7 @@ constexpr double kEndWallX = 10.0;  // the corridor's only wall across it
 // A laser at the origin of a corridor between the walls y = ±1, closed by a wall at x = 10 ahead
 // and open behind: 360 beams over the full turn.
 LaserScan corridorScan() {
-  LaserScan scan;
-  scan.angle_min_rad = -M_PI;
-  scan.angle_increment_rad = M_PI / 180.0;
-  scan.range_min_m = 0.02;
-  scan.range_max_m = 30.0;
-  for (int i = 0; i < 360; ++i) {
-    const double angle = scan.beamAngle(static_cast<std::size_t>(i));
+  return test::fullTurnScan([](double angle) {
     double range = std::numeric_limits<double>::infinity();
     if (std::abs(std::sin(angle)) > 1e-9) {
       range = 1.0 / std::abs(std::sin(angle));
@@ -29,10 +25,8 @@ LaserScan corridorScan() {
     if (std::cos(angle) > 1e-9) {
       range = std::min(range, kEndWallX / std::cos(angle));
     }
-    scan.ranges_m.push_back(range < scan.range_max_m ? static_cast<float>(range)
-                                                     : LaserScan::kNoReturn);
-  }
-  return scan;
+    return range < test::kFullTurnRangeMaxM ? static_cast<float>(range) : LaserScan::kNoReturn;
+  });
 }
 
 // The measurement of the corridor scan matched against itself from a guess off the truth.

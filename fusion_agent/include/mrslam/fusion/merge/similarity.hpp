@@ -76,6 +76,10 @@ struct CellSample {
 /// Every known cell of a map (known: of class free or occupied).
 std::vector<CellSample> knownCells(const GridMap& map, const ComparisonTables& tables);
 
+/// The mean (column, row) of the cells of a map that hold a value (not GridMap::kUnknown); zero
+/// when none does. Where errors of a transform are measured, about the map's known part.
+Eigen::Vector2d knownCentroid(const GridMap& map);
+
 /// An even, deterministic sample of a map's known cells: up to `occupied_count` occupied cells
 /// and up to `free_count` free cells, each picked at equal steps along the row-major order.
 std::vector<CellSample> sampleKnownCells(const std::vector<CellSample>& known,
