@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "agent_processes.hpp"
+#include "mrslam/common/map_loaders.hpp"
+#include "mrslam/fusion/merge/merge_cases.hpp"
 
 namespace mrslam::test {
 namespace {
@@ -103,6 +105,49 @@ TEST(MergeCasesCommandTest, SavesTheCropsAndCropAsWallsAtTheTruth) {
   ASSERT_EQ(truth.size(), b.size());
   // Crop A's walls placed by the truth land on crop B's walls where B knows the cells.
   EXPECT_GT(redOnWalls(truth, b), 0.8);
+}
+
+fusion::CropSpec cropSpecOf(const nlohmann::json& crop) {
+  fusion::CropSpec spec;
+  spec.corner = {crop["corner"][0].get<int>(), crop["corner"][1].get<int>()};
+  spec.size = crop["size"].get<int>();
+  spec.theta_rad = crop["theta_rad"].get<double>();
+  spec.pad_low = {crop["pad_low"][0].get<int>(), crop["pad_low"][1].get<int>()};
+  spec.pad_high = {crop["pad_high"][0].get<int>(), crop["pad_high"][1].get<int>()};
+  return spec;
+}
+
+fusion::SourceMap sourceOf(const nlohmann::json& crop) {
+  const std::string name = crop["map"].get<std::string>();
+  return {name, name, loadMapFile(sharedDataPath("maps/" + name))};
+}
+
+// Each case's details name how its crops were cut, so that one case can be cut again alone (the
+// seed merger's tests of single cases do): the same crops and the same overlap.
+TEST(MergeCasesCommandTest, DetailsCarryTheCropsToCutACaseAgain) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
+  const auto folder = scratchFolder("crops");
+  const CommandRun run = runCases({"--only", "1,6", "--json", "--details"}, folder);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json json = jsonLine(run.output);
+  ASSERT_FALSE(json.is_null()) << run.output;
+  const nlohmann::json& cases = json["methods"]["feature"]["cases"];
+  ASSERT_EQ(cases.size(), 2u);
+  for (const nlohmann::json& detail : cases) {
+    const nlohmann::json& crop_a = detail["crop_a"];
+    const nlohmann::json& crop_b = detail["crop_b"];
+    const bool positive = detail.contains("overlap");
+    EXPECT_EQ(positive, crop_a["map"] == crop_b["map"]) << detail.dump();
+    const fusion::MergeCase again = fusion::makeCase(sourceOf(crop_a), cropSpecOf(crop_a),
+                                                     sourceOf(crop_b), cropSpecOf(crop_b));
+    EXPECT_EQ(again.positive, positive);
+    // The window, turned, and its pads: at least as wide as the window's side and pads.
+    EXPECT_GE(again.b.geometry.width, crop_b["size"].get<int>() + crop_b["pad_low"][0].get<int>() +
+                                          crop_b["pad_high"][0].get<int>());
+    if (positive) {
+      EXPECT_NEAR(again.overlap, detail["overlap"].get<double>(), 1e-12);
+    }
+  }
 }
 
 TEST(MergeCasesCommandTest, ABadCaseIdIsRefusedWithItsText) {

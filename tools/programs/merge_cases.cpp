@@ -129,6 +129,16 @@ struct MethodTally {
   nlohmann::json details = nlohmann::json::array();
 };
 
+// How a crop was cut, as CropSpec holds it: enough to cut the same case again in a test.
+nlohmann::json cropJson(const std::string& source, const mrslam::fusion::CropSpec& spec) {
+  return {{"map", source},
+          {"corner", {spec.corner.x(), spec.corner.y()}},
+          {"size", spec.size},
+          {"theta_rad", spec.theta_rad},
+          {"pad_low", {spec.pad_low.x(), spec.pad_low.y()}},
+          {"pad_high", {spec.pad_high.x(), spec.pad_high.y()}}};
+}
+
 void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger, MethodTally& tally) {
   const auto start = std::chrono::steady_clock::now();
   const mrslam::fusion::MergeResult result = merger.merge(merge_case.a, merge_case.b);
@@ -141,7 +151,9 @@ void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger, M
       {"verification",
        mrslam::fusion::scoreOverlap(merge_case.a, merge_case.b, result.T_to_from).verification()},
       {"reason", result.reason},
-      {"time_ms", tally.times_ms.back()}};
+      {"time_ms", tally.times_ms.back()},
+      {"crop_a", cropJson(merge_case.source_a, merge_case.spec_a)},
+      {"crop_b", cropJson(merge_case.source_b, merge_case.spec_b)}};
   if (!merge_case.positive) {
     ++tally.negative_cases;
     tally.negative_accepts += result.accepted;

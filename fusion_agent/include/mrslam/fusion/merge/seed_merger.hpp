@@ -129,7 +129,7 @@ struct SeedMergerSettings {
   long long min_overlap_cells = 1500;   ///< least known cells in the overlap (agr + dis)
   long long small_overlap_cells = 900;  ///< least overlap when walls all meet and no rival (0: off)
   double small_overlap_structure = 0.99;  ///< structure agreement that lets small_overlap_cells do
-  double min_structure_agreement = 0.85;  ///< least share of walls landing on walls
+  double min_structure_agreement = 0.88;  ///< least share of walls landing on walls
   double entropy_agreement_cells = 1.5;   ///< largest gap best-similarity ↔ least-entropy
   double max_translation_ambiguity = 0.95;  ///< largest runner-up / best agr - dis in ±δ
   double decisive_wall_ambiguity = 0.85;    ///< walls fix the shift: wall runner-up share ≤ this
