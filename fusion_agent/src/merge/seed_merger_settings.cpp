@@ -112,6 +112,8 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       "max_translation_ambiguity", settings.max_translation_ambiguity, {0.0, 1.0});
   settings.max_rival_share =
       section.getDouble("max_rival_share", settings.max_rival_share, {0.0, 1.0});
+  settings.cleaner_rival_rate =
+      section.getDouble("cleaner_rival_rate", settings.cleaner_rival_rate, {0.0, 1.0});
   settings.judged_candidates =
       static_cast<int>(section.getInt("judged_candidates", settings.judged_candidates, {1, 100}));
   settings.wall_anchor = section.getBool("wall_anchor", settings.wall_anchor);

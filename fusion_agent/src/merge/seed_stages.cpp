@@ -382,8 +382,38 @@ std::optional<std::size_t> rivalOf(const std::vector<Candidate>& candidates,
   return std::nullopt;
 }
 
+bool cleanerRival(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
+                  const ComparisonTables& tables, const SeedMergerSettings& settings) {
+  if (candidates.empty() || settings.cleaner_rival_rate <= 0.0) {
+    return false;
+  }
+  const Candidate& chosen = candidates.front();
+  const Eigen::Vector2d centre = chosen.T_to_from.apply(inputs.pivot_from);
+  double chosen_rate = -1.0;  // computed at the first eligible rival
+  for (std::size_t i = 1; i < candidates.size(); ++i) {
+    const Candidate& other = candidates[i];
+    if (!meetsBars(other, settings) || other.structure < chosen.structure ||
+        (other.T_to_from.apply(inputs.pivot_from) - centre).norm() <= kRivalCells) {
+      continue;
+    }
+    if (chosen_rate < 0.0) {
+      chosen_rate = 1.0 - verificationIndex(compareAt(inputs.all_samples, inputs.to,
+                                                      chosen.T_to_from, tables, false));
+    }
+    const double rate = 1.0 - verificationIndex(compareAt(inputs.all_samples, inputs.to,
+                                                          other.T_to_from, tables, false));
+    if (rate <= settings.cleaner_rival_rate * chosen_rate) {
+      return true;
+    }
+  }
+  return false;
+}
+
 double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
                   const ComparisonTables& tables, const SeedMergerSettings& settings) {
+  if (cleanerRival(candidates, inputs, tables, settings)) {
+    return 1.0;
+  }
   const std::optional<std::size_t> rival = rivalOf(candidates, inputs, settings);
   if (!rival) {
     return 0.0;

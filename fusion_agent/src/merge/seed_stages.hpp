@@ -130,12 +130,19 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
 /// first's; 0 without one. Both are compared alike: the best shift within ±1 cell on the fine
 /// samples, then agr - dis over all known cells. Near 1: two different transforms explain the
 /// overlap equally well. With `wall_ranking`, the larger of that and the rival's share of the
-/// first's wall balance.
+/// first's wall balance. A cleaner rival (cleanerRival()) counts as a share of 1.
 double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
                   const ComparisonTables& tables, const SeedMergerSettings& settings);
 
 /// Rivals lie farther than this (cells) from the first candidate at the centre of `from`.
 constexpr double kRivalCells = 10.0;
+
+/// Whether a candidate farther than kRivalCells from the first meets the bars, its walls meet
+/// walls at least as well as the first's and its known cells disagree at most
+/// `cleaner_rival_rate` times as often (1 - V over all known cells): the overlap is explained more
+/// consistently elsewhere, however much smaller (a half-symmetric hall turned by 180°).
+bool cleanerRival(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
+                  const ComparisonTables& tables, const SeedMergerSettings& settings);
 
 /// The index of the candidate that rivalShare() compares with the first, if any.
 std::optional<std::size_t> rivalOf(const std::vector<Candidate>& candidates,

@@ -48,7 +48,10 @@
 //    free cells, so a wrong pose in open space scores high) and the best shift ≥ 3 cells from the
 //    best scores at most `max_translation_ambiguity` of it (a corridor seen along its length
 //    fixes no translation), and no other candidate that meets the structure bar but puts `from`
-//    elsewhere scores more than `max_rival_share` of the best (a symmetric junction).
+//    elsewhere scores more than `max_rival_share` of the best (a symmetric junction), nor one
+//    whose walls meet walls at least as well and whose known cells disagree at most
+//    `cleaner_rival_rate` times as often (a hall that looks alike turned by 180°, where the wrong
+//    turn overlaps more).
 // 9. Fallback (ours, `radon_fallback`): when step 8 refuses, the `fallback_rotations` strongest
 //    peaks of the Radon profile correlation, each with its other half turn, are searched over all
 //    translations at once by a coarse DFT correlation (seed_fallback.cpp); its
@@ -128,14 +131,17 @@ struct SeedMergerSettings {
   double min_verification_v = 0.9;      ///< V threshold: least agr / (agr + dis)
   long long min_overlap_cells = 1500;   ///< least known cells in the overlap (agr + dis)
   long long small_overlap_cells = 900;  ///< least overlap when walls all meet and no rival (0: off)
-  double small_overlap_structure = 0.99;  ///< structure agreement that lets small_overlap_cells do
+  double small_overlap_structure = 0.98;  ///< structure agreement that lets small_overlap_cells do
   double min_structure_agreement = 0.88;  ///< least share of walls landing on walls
   double entropy_agreement_cells = 1.5;   ///< largest gap best-similarity ↔ least-entropy
   double max_translation_ambiguity = 0.95;  ///< largest runner-up / best agr - dis in ±δ
   double decisive_wall_ambiguity = 0.85;    ///< walls fix the shift: wall runner-up share ≤ this
   double max_open_floor_ambiguity = 0.975;  ///< agr - dis runner-up bar when walls fix the shift
   double max_rival_share = 0.93;            ///< largest agr - dis of a rival transform / best
-  int judged_candidates = 3;                ///< candidates judged in turn when the best is refused
+  double cleaner_rival_rate =
+      0.5;                      ///< a rival whose walls meet as well and whose cells disagree
+                                ///< at most this share as often as the best's refuses it (0: off)
+  int judged_candidates = 3;    ///< candidates judged in turn when the best is refused
   bool wall_anchor = true;      ///< step 7: translation by walls near walls before agr - dis
   bool wall_ranking = true;     ///< candidates placed and ranked by walls, rivals judged by both
   bool rank_by_overlap = true;  ///< candidates whose overlap is below min_overlap_cells rank last
