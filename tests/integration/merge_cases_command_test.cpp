@@ -32,6 +32,15 @@ nlohmann::json jsonLine(const std::string& output) {
   return nullptr;
 }
 
+/// The JSON line of a run in scratch folder `name`, which must succeed; null when it did not.
+nlohmann::json jsonOfRun(const std::vector<std::string>& arguments, const char* name) {
+  const CommandRun run = runCases(arguments, scratchFolder(name));
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json json = jsonLine(run.output);
+  EXPECT_FALSE(json.is_null()) << run.output;
+  return run.exit_code == 0 ? json : nullptr;
+}
+
 int casesRun(const nlohmann::json& method) {
   int cases = method["negative_cases"].get<int>();
   for (const auto& band : method["bands"]) {
@@ -69,12 +78,9 @@ double redOnWalls(const cv::Mat& truth, const cv::Mat& b) {
 
 TEST(MergeCasesCommandTest, RunsOnlyTheChosenCasesAndJudgesTheirTruth) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
-  const auto folder = scratchFolder("only");
   // Case 1 is positive and case 6 negative at 6 positive cases, seed 1.
-  const CommandRun run = runCases({"--only", "1,6", "--judge-truth", "--json"}, folder);
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const nlohmann::json json = jsonLine(run.output);
-  ASSERT_FALSE(json.is_null()) << run.output;
+  const nlohmann::json json = jsonOfRun({"--only", "1,6", "--judge-truth", "--json"}, "only");
+  ASSERT_FALSE(json.is_null());
   const nlohmann::json& feature = json["methods"]["feature"];
   EXPECT_EQ(casesRun(feature), 2);
   EXPECT_EQ(feature["negative_cases"].get<int>(), 1);
@@ -126,11 +132,8 @@ fusion::SourceMap sourceOf(const nlohmann::json& crop) {
 // seed merger's tests of single cases do): the same crops and the same overlap.
 TEST(MergeCasesCommandTest, DetailsCarryTheCropsToCutACaseAgain) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
-  const auto folder = scratchFolder("crops");
-  const CommandRun run = runCases({"--only", "1,6", "--json", "--details"}, folder);
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const nlohmann::json json = jsonLine(run.output);
-  ASSERT_FALSE(json.is_null()) << run.output;
+  const nlohmann::json json = jsonOfRun({"--only", "1,6", "--json", "--details"}, "crops");
+  ASSERT_FALSE(json.is_null());
   const nlohmann::json& cases = json["methods"]["feature"]["cases"];
   ASSERT_EQ(cases.size(), 2u);
   for (const nlohmann::json& detail : cases) {
