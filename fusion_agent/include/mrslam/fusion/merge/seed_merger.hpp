@@ -138,9 +138,9 @@ struct SeedMergerSettings {
   double decisive_wall_ambiguity = 0.85;    ///< walls fix the shift: wall runner-up share ≤ this
   double max_open_floor_ambiguity = 0.975;  ///< agr - dis runner-up bar when walls fix the shift
   double max_rival_share = 0.93;            ///< largest agr - dis of a rival transform / best
-  double cleaner_rival_rate =
-      0.5;                      ///< a rival whose walls meet as well and whose cells disagree
-                                ///< at most this share as often as the best's refuses it (0: off)
+  /// A rival whose walls meet walls as well and whose known cells disagree at most this share as
+  /// often as the best's refuses the best, as a rival of share 1 (0: off).
+  double cleaner_rival_rate = 0.5;
   int judged_candidates = 3;    ///< candidates judged in turn when the best is refused
   bool wall_anchor = true;      ///< step 7: translation by walls near walls before agr - dis
   bool wall_ranking = true;     ///< candidates placed and ranked by walls, rivals judged by both
