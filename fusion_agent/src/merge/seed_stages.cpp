@@ -267,11 +267,13 @@ void orderCandidates(std::vector<Candidate>& candidates, const SeedMergerSetting
                    });
 }
 
-// Known cells in the overlap at T_to_from (agr + dis over all of `from`'s known cells).
-double overlapCells(const GridTransform& T_to_from, const SearchInputs& inputs,
-                    const ComparisonTables& tables) {
-  const Agreement all = compareAt(inputs.all_samples, inputs.to, T_to_from, tables, false);
-  return static_cast<double>(all.agreement + all.disagreement);
+// The candidate's overlap (agr + dis over all of `from`'s known cells) and its disagreement rate.
+void measureOverlap(const SearchInputs& inputs, const ComparisonTables& tables,
+                    Candidate& candidate) {
+  const Agreement all =
+      compareAt(inputs.all_samples, inputs.to, candidate.T_to_from, tables, false);
+  candidate.overlap_cells = static_cast<double>(all.agreement + all.disagreement);
+  candidate.disagreement_rate = 1.0 - verificationIndex(all);
 }
 
 // The best shift within ±1 cell and its agr - dis.
@@ -332,7 +334,7 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
                                         const SeedMergerSettings& settings) {
   std::vector<Candidate> candidates;
   for (const Hypothesis& hypothesis : bestDistinct(hypotheses, count)) {
-    Candidate candidate{hypothesis.T_to_from, hypothesis.stage, 0, 0.0, 0, 0.0};
+    Candidate candidate{hypothesis.T_to_from, hypothesis.stage, 0, 0.0, 0, 0.0, 0.0};
     if (settings.wall_ranking) {
       const WallSearch walls =
           anchorOnWalls(hypothesis.T_to_from, settings.translation_window_delta, inputs, tables);
@@ -347,7 +349,7 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
     }
     candidate.structure =
         twoWayStructure(inputs.coarse_samples, candidate.T_to_from, inputs, tables);
-    candidate.overlap_cells = overlapCells(candidate.T_to_from, inputs, tables);
+    measureOverlap(inputs, tables, candidate);
     candidates.push_back(candidate);
   }
   orderCandidates(candidates, settings);
@@ -383,35 +385,22 @@ std::optional<std::size_t> rivalOf(const std::vector<Candidate>& candidates,
 }
 
 bool cleanerRival(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
-                  const ComparisonTables& tables, const SeedMergerSettings& settings) {
+                  const SeedMergerSettings& settings) {
   if (candidates.empty() || settings.cleaner_rival_rate <= 0.0) {
     return false;
   }
   const Candidate& chosen = candidates.front();
   const Eigen::Vector2d centre = chosen.T_to_from.apply(inputs.pivot_from);
-  double chosen_rate = -1.0;  // computed at the first eligible rival
-  for (std::size_t i = 1; i < candidates.size(); ++i) {
-    const Candidate& other = candidates[i];
-    if (!meetsBars(other, settings) || other.structure < chosen.structure ||
-        (other.T_to_from.apply(inputs.pivot_from) - centre).norm() <= kRivalCells) {
-      continue;
-    }
-    if (chosen_rate < 0.0) {
-      chosen_rate = 1.0 - verificationIndex(compareAt(inputs.all_samples, inputs.to,
-                                                      chosen.T_to_from, tables, false));
-    }
-    const double rate = 1.0 - verificationIndex(compareAt(inputs.all_samples, inputs.to,
-                                                          other.T_to_from, tables, false));
-    if (rate <= settings.cleaner_rival_rate * chosen_rate) {
-      return true;
-    }
-  }
-  return false;
+  return std::any_of(candidates.begin() + 1, candidates.end(), [&](const Candidate& other) {
+    return meetsBars(other, settings) && other.structure >= chosen.structure &&
+           (other.T_to_from.apply(inputs.pivot_from) - centre).norm() > kRivalCells &&
+           other.disagreement_rate <= settings.cleaner_rival_rate * chosen.disagreement_rate;
+  });
 }
 
 double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
                   const ComparisonTables& tables, const SeedMergerSettings& settings) {
-  if (cleanerRival(candidates, inputs, tables, settings)) {
+  if (cleanerRival(candidates, inputs, settings)) {
     return 1.0;
   }
   const std::optional<std::size_t> rival = rivalOf(candidates, inputs, settings);

@@ -112,10 +112,11 @@ TranslationSearch searchAround(const GridTransform& T_to_from, const SearchInput
 struct Candidate {
   GridTransform T_to_from;
   Stage stage = Stage::kSegments;
-  long long similarity = 0;    ///< agr - dis on the search samples
-  double structure = 0.0;      ///< the lesser structure agreement of both directions (samples)
-  long long walls = 0;         ///< wallBalance() (ranks the candidates with `wall_ranking`)
-  double overlap_cells = 0.0;  ///< known cells in the overlap (agr + dis, all cells)
+  long long similarity = 0;        ///< agr - dis on the search samples
+  double structure = 0.0;          ///< the lesser structure agreement of both directions (samples)
+  long long walls = 0;             ///< wallBalance() (ranks the candidates with `wall_ranking`)
+  double overlap_cells = 0.0;      ///< known cells in the overlap (agr + dis, all cells)
+  double disagreement_rate = 0.0;  ///< 1 - V over all known cells (dis / (agr + dis))
 };
 
 /// Block 8 on the `count` best distinct hypotheses; candidates ordered best first: those whose
@@ -139,10 +140,10 @@ constexpr double kRivalCells = 10.0;
 
 /// Whether a candidate farther than kRivalCells from the first meets the bars, its walls meet
 /// walls at least as well as the first's and its known cells disagree at most
-/// `cleaner_rival_rate` times as often (1 - V over all known cells): the overlap is explained more
-/// consistently elsewhere, however much smaller (a half-symmetric hall turned by 180°).
+/// `cleaner_rival_rate` times as often (Candidate::disagreement_rate): the overlap is explained
+/// more consistently elsewhere, however much smaller (a half-symmetric hall turned by 180°).
 bool cleanerRival(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
-                  const ComparisonTables& tables, const SeedMergerSettings& settings);
+                  const SeedMergerSettings& settings);
 
 /// The index of the candidate that rivalShare() compares with the first, if any.
 std::optional<std::size_t> rivalOf(const std::vector<Candidate>& candidates,

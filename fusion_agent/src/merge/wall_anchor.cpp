@@ -14,34 +14,9 @@
 
 namespace mrslam::fusion::seed {
 
-long long wallBalance(const GridTransform& T_to_from, const SearchInputs& inputs,
-                      const ComparisonTables& tables) {
-  const StructureAgreement forward =
-      structureAgreement(inputs.occupied_from_samples, inputs.to, T_to_from, tables);
-  const StructureAgreement backward =
-      structureAgreement(inputs.occupied_to_samples, inputs.from, T_to_from.inverse(), tables);
-  return forward.near - forward.far + backward.near - backward.far;
-}
-
 namespace {
 
-using ShiftBalance = std::pair<Eigen::Vector2i, long long>;
-
-// The largest balance among the shifts at least kRunnerUpCells (Chebyshev) from `best_shift`.
-std::optional<long long> runnerUp(const std::vector<ShiftBalance>& balances,
-                                  const Eigen::Vector2i& best_shift) {
-  std::optional<long long> runner_up;
-  for (const auto& [shift, balance] : balances) {
-    const Eigen::Vector2i gap = shift - best_shift;
-    if (std::max(std::abs(gap.x()), std::abs(gap.y())) >= kRunnerUpCells &&
-        (!runner_up || balance > *runner_up)) {
-      runner_up = balance;
-    }
-  }
-  return runner_up;
-}
-
-// wallBalance() at every shift of T_to_from within ±reach, in row order (dy, then dx): each
+// The wall balance at every shift of T_to_from within ±reach, in row order (dy, then dx): each
 // map's wall samples are turned once for all the shifts.
 std::vector<long long> shiftedBalances(const GridTransform& T_to_from, int reach,
                                        const SearchInputs& inputs, const ComparisonTables& tables) {
@@ -66,8 +41,28 @@ std::vector<long long> shiftedBalances(const GridTransform& T_to_from, int reach
   return balances;
 }
 
+using ShiftBalance = std::pair<Eigen::Vector2i, long long>;
+
+// The largest balance among the shifts at least kRunnerUpCells (Chebyshev) from `best_shift`.
+std::optional<long long> runnerUp(const std::vector<ShiftBalance>& balances,
+                                  const Eigen::Vector2i& best_shift) {
+  std::optional<long long> runner_up;
+  for (const auto& [shift, balance] : balances) {
+    const Eigen::Vector2i gap = shift - best_shift;
+    if (std::max(std::abs(gap.x()), std::abs(gap.y())) >= kRunnerUpCells &&
+        (!runner_up || balance > *runner_up)) {
+      runner_up = balance;
+    }
+  }
+  return runner_up;
+}
+
 }  // namespace
 
+long long wallBalance(const GridTransform& T_to_from, const SearchInputs& inputs,
+                      const ComparisonTables& tables) {
+  return shiftedBalances(T_to_from, 0, inputs, tables).front();
+}
 WallSearch anchorOnWalls(const GridTransform& T_to_from, int reach, const SearchInputs& inputs,
                          const ComparisonTables& tables) {
   WallSearch search;
