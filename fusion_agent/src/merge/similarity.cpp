@@ -242,6 +242,21 @@ TranslationSearch searchTranslation(const std::vector<CellSample>& samples, cons
   return search;
 }
 
+StructureAgreement structureAgreement(const std::vector<CellSample>& samples, const CodeImage& to,
+                                      const GridTransform& T_to_from,
+                                      const ComparisonTables& tables) {
+  StructureAgreement sums;
+  const std::uint8_t* classes = to.classes.ptr<std::uint8_t>(0);
+  const std::uint8_t* near = to.near_occupied.ptr<std::uint8_t>(0);
+  for (const PlacedSample& sample : place(samples, to, T_to_from, 0, tables)) {
+    if (sample.class_row == 6 && classes[sample.index] != 0) {
+      sums.near += near[sample.index] != 0 ? 1 : 0;
+      sums.far += near[sample.index] != 0 ? 0 : 1;
+    }
+  }
+  return sums;
+}
+
 namespace {
 
 // The occupied samples turned by theta, summed in the order place() sums them, so that the cells
@@ -299,12 +314,6 @@ std::vector<StructureAgreement> structureAgreements(const std::vector<CellSample
     }
   }
   return all;
-}
-
-StructureAgreement structureAgreement(const std::vector<CellSample>& samples, const CodeImage& to,
-                                      const GridTransform& T_to_from,
-                                      const ComparisonTables& tables) {
-  return structureAgreements(samples, to, {T_to_from}, tables).front();
 }
 
 Eigen::Vector2d knownCentroid(const GridMap& map) {
