@@ -197,6 +197,7 @@ void BM_SeedMerge400(benchmark::State& state, const char* file) {
                     total.verification += last.verification;
                     total.fallback += last.fallback;
                     total.global += last.global;
+                    total.alignment += last.alignment;
                   })) {
     return;
   }
@@ -204,9 +205,9 @@ void BM_SeedMerge400(benchmark::State& state, const char* file) {
   state.counters["median_ms"] = times[times.size() / 2];
   state.counters["accepted_share"] =
       static_cast<double>(accepted) / static_cast<double>(times.size());
-  const double sum =
-      milliseconds(total.edges + total.radon + total.segments + total.correlation + total.poses +
-                   total.translation + total.verification + total.fallback + total.global);
+  const double sum = milliseconds(total.edges + total.radon + total.segments + total.correlation +
+                                  total.poses + total.translation + total.verification +
+                                  total.fallback + total.global + total.alignment);
   const auto share = [&](const char* name, SeedMergeTimings::Duration block) {
     state.counters[name] = milliseconds(block) / sum;
   };
@@ -219,6 +220,7 @@ void BM_SeedMerge400(benchmark::State& state, const char* file) {
   share("verification", total.verification);
   share("fallback", total.fallback);
   share("global", total.global);
+  share("alignment", total.alignment);
 }
 BENCHMARK_CAPTURE(BM_SeedMerge400, intel, "carpin-intel.txt")
     ->Unit(benchmark::kMillisecond)

@@ -170,6 +170,8 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
   }
   judge(refined, from, to, result);  // block 9
   lap(clock, timings_.verification);
+  alignAccepted(from, to, settings_.wall_alignment, settings_.similarity, result);
+  lap(clock, timings_.alignment);
   return result;
 }
 

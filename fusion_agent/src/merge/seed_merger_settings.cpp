@@ -168,6 +168,17 @@ void readGlobalSearchSettings(const Config& section, SeedMergerSettings& setting
       readInt(section, "global_candidates", settings.global_candidates, {1, 1000});
 }
 
+void readAlignmentSettings(const Config& section, SeedMergerSettings& settings) {
+  WallAlignmentSettings& alignment = settings.wall_alignment;
+  alignment.enabled = section.getBool("wall_alignment", alignment.enabled);
+  alignment.sigma_cells =
+      section.getDouble("wall_alignment_sigma_cells", alignment.sigma_cells, {0.1, 10.0});
+  alignment.max_turn_deg =
+      section.getDouble("wall_alignment_turn_deg", alignment.max_turn_deg, {0.0, 10.0});
+  alignment.max_shift_cells =
+      section.getDouble("wall_alignment_shift_cells", alignment.max_shift_cells, {0.0, 20.0});
+}
+
 }  // namespace
 
 SeedMergerSettings loadSeedMergerSettings(const Config& section) {
@@ -177,6 +188,7 @@ SeedMergerSettings loadSeedMergerSettings(const Config& section) {
   readSearchSettings(section, settings);
   readAcceptanceSettings(section, settings);
   readGlobalSearchSettings(section, settings);
+  readAlignmentSettings(section, settings);
   return settings;
 }
 

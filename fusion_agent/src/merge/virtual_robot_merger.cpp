@@ -28,8 +28,10 @@ VirtualRobotSettings loadVirtualRobotSettings(const Config& config) {
 }
 
 MergeResult VirtualRobotMerger::merge(const GridMap& from, const GridMap& to) {
-  return judgeFoundHypotheses(judge_, from, to, hypotheses(from, to), name(),
-                              "virtual robot (skeleton walks)");
+  MergeResult result = judgeFoundHypotheses(judge_, from, to, hypotheses(from, to), name(),
+                                            "virtual robot (skeleton walks)");
+  alignAccepted(from, to, judge_.settings().wall_alignment, judge_.settings().similarity, result);
+  return result;
 }
 
 }  // namespace mrslam::fusion

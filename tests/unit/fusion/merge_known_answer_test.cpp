@@ -56,15 +56,17 @@ TEST_P(MergeKnownAnswerTest, CropsOverlappingByHalfOrMoreMergeWithinTwoCellsAndO
   EXPECT_GE(tally.successes, tally.cases - 1) << tally.successes << " of " << tally.cases;
 }
 
-// The walls-onto-walls refinement takes accepted merges below the cell and the polish step.
+// The walls-onto-walls refinements (ICP in block 8, the two-way alignment after acceptance) take
+// accepted merges below the cell and the polish step.
 TEST(MergeKnownAnswerPrecisionTest, AcceptedMergesLandWithinAFractionOfACell) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
   const GridMap map = loadShared("freiburg-intel.pgm");
   std::vector<double> distances;
   std::vector<double> angles;
-  for (const int iterations : {30, 0}) {  // refined, then the discrete search alone
+  for (const bool refined : {true, false}) {  // refined, then the discrete search alone
     SeedMergerSettings settings;
-    settings.wall_icp_iterations = iterations;
+    settings.wall_icp_iterations = refined ? 30 : 0;
+    settings.wall_alignment.enabled = refined;
     SeedMerger merger(settings);
     std::mt19937 cases(11);
     std::vector<double> distance_errors;
@@ -78,14 +80,14 @@ TEST(MergeKnownAnswerPrecisionTest, AcceptedMergesLandWithinAFractionOfACell) {
         angle_errors.push_back(error.rotation_rad * 180.0 / M_PI);
       }
     }
-    ASSERT_GE(distance_errors.size(), 8u) << iterations;
+    ASSERT_GE(distance_errors.size(), 8u) << refined;
     std::nth_element(distance_errors.begin(), distance_errors.begin() + distance_errors.size() / 2,
                      distance_errors.end());
     std::nth_element(angle_errors.begin(), angle_errors.begin() + angle_errors.size() / 2,
                      angle_errors.end());
     distances.push_back(distance_errors[distance_errors.size() / 2]);
     angles.push_back(angle_errors[angle_errors.size() / 2]);
-    std::printf("wall_icp_iterations %d: median error %.2f cells, %.2f deg\n", iterations,
+    std::printf("refined %d: median error %.3f cells, %.3f deg\n", refined ? 1 : 0,
                 distances.back(), angles.back());
   }
   EXPECT_LE(distances[0], 0.5);

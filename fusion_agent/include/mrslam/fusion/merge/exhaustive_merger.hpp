@@ -14,6 +14,8 @@
 // `return_own_peak`, that peak is the transform returned. A peak that a turn of
 // `ambiguity_turn_deg` scores `max_turn_ambiguity` of or more is refused: the overlap does not
 // fix the rotation (a flat score over several degrees, where either measure may settle wrong).
+// An accepted transform is aligned last, as the seed merger's are (`wall_alignment` of the judge's
+// settings, wall_alignment.hpp).
 
 #include <string>
 #include <vector>

@@ -66,6 +66,11 @@
 //    cells meeting free cells (`global_free_agreement_*`, global_search.hpp step 5: overlaps of
 //    open floor with few walls) join last; theirs must reach V ≥ `global_free_min_verification`.
 //    MergeResult::method names the step whose candidate is returned.
+// 11. Alignment (ours, `wall_alignment`): an accepted transform is moved, within ±1.5° and ±2.5
+//    cells, to the best two-way agreement of the two maps' walls read between cells
+//    (wall_alignment.hpp), where V does not drop; the discrete searches above leave up to a cell
+//    or two and a degree at small overlaps. The exhaustive and virtual-robot mergers, which this
+//    merger judges, end with the same step.
 // Acceptance (ours): with `rank_by_overlap`, candidates whose overlap is below
 // `min_overlap_cells` rank after the others and are no rival. The translation also counts as
 // fixed when the wall balance's runner-up share is at most `decisive_wall_ambiguity` and agr -
@@ -96,6 +101,7 @@
 #include "mrslam/fusion/merge/radon.hpp"
 #include "mrslam/fusion/merge/segments.hpp"
 #include "mrslam/fusion/merge/similarity.hpp"
+#include "mrslam/fusion/merge/wall_alignment.hpp"
 
 namespace mrslam::fusion {
 
@@ -160,6 +166,9 @@ struct SeedMergerSettings {
   double global_fine_min_verification = 0.96;  ///< least V of a transform of the finer sweep
   double global_free_min_verification = 0.98;  ///< least V of a transform found by free agreement
   std::uint32_t seed = 1;                      ///< seed of the random segment starts
+  /// After acceptance: the walls aligned both ways (wall_alignment.hpp); also the last step of the
+  /// mergers this one judges (exhaustive, virtual robot).
+  WallAlignmentSettings wall_alignment;
 };
 
 /// Reads a `seed_merger` config section (every key optional, defaults above); angles in
@@ -178,6 +187,7 @@ struct SeedMergeTimings {
   Duration verification{};  ///< block 9
   Duration fallback{};      ///< the Radon fallback, when it ran
   Duration global{};        ///< the global search, when it ran
+  Duration alignment{};     ///< the walls aligned both ways, when accepted
 };
 
 class SeedMerger : public MapMerger {
@@ -186,6 +196,7 @@ class SeedMerger : public MapMerger {
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "seed"; }
   const SeedMergeTimings& lastTimings() const { return timings_; }
+  const SeedMergerSettings& settings() const { return settings_; }
   /// Blocks 8-9 on hypotheses found by another method (a virtual robot, a rendezvous, a wider
   /// search): each is placed by the translation search within ±δ, they are ranked together and
   /// the best is judged by the same acceptance as the seed's own candidates, every other given

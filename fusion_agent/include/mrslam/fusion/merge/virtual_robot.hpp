@@ -7,7 +7,7 @@
 // in `to` (T1) while its pose in `from` (T2) is known, so each is a hypothesis
 // T_to_from = T1 · T2⁻¹. The hypotheses are judged by the seed pipeline's own acceptance
 // (SeedMerger::judgeHypotheses: ±δ placement, ranking, rival check and every refusal rule), with
-// the seed merger's settings.
+// the seed merger's settings; an accepted one is aligned last, as the seed merger's are.
 
 #include <cstdint>
 #include <vector>

@@ -1,0 +1,365 @@
+#include "mrslam/fusion/merge/wall_alignment.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace mrslam::fusion {
+
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+constexpr double kLeastField = 0.01;  // f below this counts as 0 (d beyond 3σ)
+
+using Level = WallField::Level;
+using Cells = std::vector<Eigen::Vector2d>;
+
+// static_cast<int>(std::floor(v)) for |v| < 2^31, without a call into libm.
+inline int floorToInt(double v) {
+  const int truncated = static_cast<int>(v);
+  return v < truncated ? truncated - 1 : truncated;
+}
+
+// The walls and the known cells of a map by the classes of block 8 (occupied at least
+// occupied_threshold, free at most free_threshold, unknown between).
+Cells classify(const GridMap& map, const SimilaritySettings& classes, cv::Mat& known) {
+  Cells walls;
+  known = cv::Mat(map.geometry.height, map.geometry.width, CV_8U, cv::Scalar(0));
+  for (int y = 0; y < map.geometry.height; ++y) {
+    std::uint8_t* row = known.ptr<std::uint8_t>(y);
+    for (int x = 0; x < map.geometry.width; ++x) {
+      const int value = map.at(x, y);
+      if (value >= classes.occupied_threshold) {
+        walls.emplace_back(x, y);
+        row[x] = 1;
+      } else if (value >= 0 && value <= classes.free_threshold) {
+        row[x] = 1;
+      }
+    }
+  }
+  return walls;
+}
+
+// f = exp(-d² / 2σ²) of every known cell, d its distance to the nearest wall: each wall raises
+// the cells around it to its own f (the nearest wall's is the largest) where that reaches
+// kLeastField; 0 farther away and on unknown cells.
+cv::Mat likelihoodField(const cv::Mat& known, const Cells& walls, double sigma_cells) {
+  struct Weight {
+    int dx;
+    int dy;
+    float f;
+  };
+  const int reach = static_cast<int>(std::ceil(3.0 * sigma_cells));
+  std::vector<Weight> kernel;
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const double f = std::exp(-(dx * dx + dy * dy) / (2.0 * sigma_cells * sigma_cells));
+      if (f >= kLeastField) {
+        kernel.push_back({dx, dy, static_cast<float>(f)});
+      }
+    }
+  }
+  cv::Mat field(known.size(), CV_32F, cv::Scalar(0.0f));
+  for (const Eigen::Vector2d& wall : walls) {
+    const int x = static_cast<int>(wall.x());
+    const int y = static_cast<int>(wall.y());
+    for (const Weight& weight : kernel) {
+      const int u = x + weight.dx;
+      const int v = y + weight.dy;
+      if (u >= 0 && v >= 0 && u < known.cols && v < known.rows &&
+          known.ptr<std::uint8_t>(v)[u] != 0) {
+        float& cell = field.ptr<float>(v)[u];
+        cell = std::max(cell, weight.f);
+      }
+    }
+  }
+  return field;
+}
+
+Cells evenSample(const Cells& cells, int count) {
+  if (count <= 0 || cells.size() <= static_cast<std::size_t>(count)) {
+    return cells;
+  }
+  Cells sample;
+  const double stride = static_cast<double>(cells.size()) / count;
+  for (int i = 0; i < count; ++i) {
+    sample.push_back(cells[static_cast<std::size_t>(i * stride)]);
+  }
+  return sample;
+}
+
+// The centre of `from`'s walls that T_to_from lands on `to`'s known cells (of all its walls when
+// none does): the window turns about it.
+Eigen::Vector2d overlapPivot(const WallField& from, const WallField& to,
+                             const GridTransform& T_to_from) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int count = 0;
+  for (const Eigen::Vector2d& wall : from.walls()) {
+    if (to.isKnown(T_to_from.apply(wall))) {
+      sum += wall;
+      ++count;
+    }
+  }
+  if (count == 0) {
+    for (const Eigen::Vector2d& wall : from.walls()) {
+      sum += wall;
+    }
+    count = static_cast<int>(from.walls().size());
+  }
+  return sum / std::max(1, count);
+}
+
+// The walls of `own` that some transform of the window can carry onto known cells of `other`:
+// a transform of the window moves a wall at r cells from the pivot (in `own`'s cells) at most
+// max_shift + r · max_turn from where T_other_own puts it.
+Cells reachableWalls(const WallField& own, const WallField& other, const GridTransform& T_other_own,
+                     const Eigen::Vector2d& pivot_own, const WallAlignmentSettings& settings) {
+  const double max_turn = settings.max_turn_deg * kDegToRad;
+  Cells reachable;
+  for (const Eigen::Vector2d& wall : own.walls()) {
+    const double margin = settings.max_shift_cells + (wall - pivot_own).norm() * max_turn + 1.0;
+    if (other.knownWithin(T_other_own.apply(wall), margin)) {
+      reachable.push_back(wall);
+    }
+  }
+  return reachable;
+}
+
+// A transform of the window: the accepted one turned by `turn` about the pivot, then shifted.
+struct Offset {
+  double turn = 0.0;
+  Eigen::Vector2d shift = Eigen::Vector2d::Zero();
+};
+
+// The scored walls of both maps at both levels and the window's parametrisation.
+class OffsetScorer {
+ public:
+  OffsetScorer(const WallField& from, const WallField& to, const GridTransform& T_to_from,
+               const WallAlignmentSettings& settings)
+      : from_(from), to_(to), T_(T_to_from) {
+    pivot_ = overlapPivot(from, to, T_to_from);
+    landed_ = T_.apply(pivot_);
+    const Cells from_walls = reachableWalls(from, to, T_to_from, pivot_, settings);
+    const Cells to_walls = reachableWalls(to, from, T_to_from.inverse(), landed_, settings);
+    from_walls_ = {evenSample(from_walls, settings.coarse_walls),
+                   evenSample(from_walls, settings.max_walls)};
+    to_walls_ = {evenSample(to_walls, settings.coarse_walls),
+                 evenSample(to_walls, settings.max_walls)};
+  }
+
+  GridTransform transform(const Offset& offset) const {
+    GridTransform T;
+    T.theta_rad = T_.theta_rad + offset.turn;
+    GridTransform turn_only;
+    turn_only.theta_rad = T.theta_rad;
+    T.t_cells = landed_ + offset.shift - turn_only.apply(pivot_);
+    return T;
+  }
+
+  /// W of `level` at every shift of `shifts` for one turn (the walls turned once).
+  std::vector<double> scores(double turn, const Cells& shifts, Level level) const {
+    const GridTransform at_zero = transform({turn, Eigen::Vector2d::Zero()});
+    const Cells moved_from = moved(from_walls_[index(level)], at_zero);
+    const Cells moved_to = moved(to_walls_[index(level)], at_zero.inverse());
+    GridTransform unturn;
+    unturn.theta_rad = -at_zero.theta_rad;
+    std::vector<double> result;
+    result.reserve(shifts.size());
+    for (const Eigen::Vector2d& shift : shifts) {
+      result.push_back(sum(moved_from, shift, to_, level) +
+                       sum(moved_to, -unturn.apply(shift), from_, level));
+    }
+    return result;
+  }
+  double score(const Offset& offset, Level level) const {
+    return scores(offset.turn, {offset.shift}, level).front();
+  }
+
+ private:
+  static std::size_t index(Level level) { return level == Level::kCoarse ? 0 : 1; }
+  static Cells moved(const Cells& cells, const GridTransform& T) {
+    Cells result;
+    result.reserve(cells.size());
+    for (const Eigen::Vector2d& cell : cells) {
+      result.push_back(T.apply(cell));
+    }
+    return result;
+  }
+  static double sum(const Cells& cells, const Eigen::Vector2d& shift, const WallField& field,
+                    Level level) {
+    double total = 0.0;
+    for (const Eigen::Vector2d& cell : cells) {
+      total += field.fieldAt(cell + shift, level);
+    }
+    return total;
+  }
+
+  const WallField& from_;
+  const WallField& to_;
+  GridTransform T_;
+  Eigen::Vector2d pivot_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d landed_ = Eigen::Vector2d::Zero();
+  std::array<Cells, 2> from_walls_;  // coarse, fine
+  std::array<Cells, 2> to_walls_;
+};
+
+struct Best {
+  Offset offset;
+  double score = 0.0;
+};
+
+// Every turn and shift of the coarse grid, on the wide field; the zero offset first, so that the
+// accepted transform wins ties.
+Offset searchGrid(const OffsetScorer& scorer, const WallAlignmentSettings& settings) {
+  const int turns =
+      static_cast<int>(std::floor(settings.max_turn_deg / settings.coarse_turn_step_deg + 1e-9));
+  const int shifts =
+      static_cast<int>(std::floor(settings.max_shift_cells / settings.coarse_shift_cells + 1e-9));
+  Cells grid;
+  grid.emplace_back(0.0, 0.0);
+  for (int i = -shifts; i <= shifts; ++i) {
+    for (int j = -shifts; j <= shifts; ++j) {
+      if (i != 0 || j != 0) {
+        grid.emplace_back(i * settings.coarse_shift_cells, j * settings.coarse_shift_cells);
+      }
+    }
+  }
+  Best best{{}, scorer.score({}, Level::kCoarse)};
+  for (int k = 0; k <= 2 * turns; ++k) {
+    const int step = (k + 1) / 2 * (k % 2 == 1 ? 1 : -1);  // 0, 1, -1, 2, -2, ...
+    const double turn = step * settings.coarse_turn_step_deg * kDegToRad;
+    const std::vector<double> scores = scorer.scores(turn, grid, Level::kCoarse);
+    for (std::size_t g = 0; g < grid.size(); ++g) {
+      if (scores[g] > best.score) {
+        best = {{turn, grid[g]}, scores[g]};
+      }
+    }
+  }
+  return best.offset;
+}
+
+// Pattern search of the narrow field from `start`: one step up or down in each of the turn and
+// the two shifts while W rises, then the steps halved, fine_steps times; the offset stays inside
+// the window.
+Best searchPattern(const OffsetScorer& scorer, const WallAlignmentSettings& settings,
+                   const Offset& start) {
+  Best best{start, scorer.score(start, Level::kFine)};
+  double turn_step = 0.5 * settings.coarse_turn_step_deg * kDegToRad;
+  double shift_step = 0.5 * settings.coarse_shift_cells;
+  const double max_turn = settings.max_turn_deg * kDegToRad;
+  for (int halving = 0; halving < settings.fine_steps; ++halving) {
+    for (bool moved = true; moved;) {
+      moved = false;
+      const Offset from = best.offset;
+      const Offset steps[] = {{turn_step, {0, 0}},   {-turn_step, {0, 0}}, {0, {shift_step, 0}},
+                              {0, {-shift_step, 0}}, {0, {0, shift_step}}, {0, {0, -shift_step}}};
+      for (const Offset& step : steps) {
+        const Offset next{from.turn + step.turn, from.shift + step.shift};
+        if (std::abs(next.turn) > max_turn + 1e-12 ||
+            next.shift.cwiseAbs().maxCoeff() > settings.max_shift_cells + 1e-9) {
+          continue;
+        }
+        const double score = scorer.score(next, Level::kFine);
+        if (score > best.score) {
+          best = {next, score};
+          moved = true;
+        }
+      }
+    }
+    turn_step *= 0.5;
+    shift_step *= 0.5;
+  }
+  return best;
+}
+
+}  // namespace
+
+WallField::WallField(const GridMap& map, const SimilaritySettings& classes,
+                     const WallAlignmentSettings& settings) {
+  walls_ = classify(map, classes, known_);
+  field_ = likelihoodField(known_, walls_, settings.sigma_cells);
+  coarse_field_ = likelihoodField(known_, walls_, settings.coarse_sigma_cells);
+  cv::Mat unknown;
+  cv::compare(known_, 0, unknown, cv::CMP_EQ);  // 255 on unknown cells: they get distances
+  cv::distanceTransform(unknown, distance_to_known_, cv::DIST_L2, cv::DIST_MASK_3);
+}
+
+double WallField::fieldAt(const Eigen::Vector2d& cell, Level level) const {
+  const cv::Mat& field = level == Level::kCoarse ? coarse_field_ : field_;
+  const int x0 = floorToInt(cell.x());
+  const int y0 = floorToInt(cell.y());
+  if (x0 < 0 || y0 < 0 || x0 + 1 >= field.cols || y0 + 1 >= field.rows) {
+    return 0.0;  // the map's last row and column count as off the map
+  }
+  const double fx = cell.x() - x0;
+  const double fy = cell.y() - y0;
+  const float* low = field.ptr<float>(y0);
+  const float* high = field.ptr<float>(y0 + 1);
+  return (1.0 - fy) * ((1.0 - fx) * low[x0] + fx * low[x0 + 1]) +
+         fy * ((1.0 - fx) * high[x0] + fx * high[x0 + 1]);
+}
+
+bool WallField::isKnown(const Eigen::Vector2d& cell) const {
+  return knownWithin(cell, 0.0);
+}
+
+bool WallField::knownWithin(const Eigen::Vector2d& cell, double cells) const {
+  const int x = floorToInt(cell.x() + 0.5);
+  const int y = floorToInt(cell.y() + 0.5);
+  if (x < 0 || y < 0 || x >= known_.cols || y >= known_.rows) {
+    return false;  // off the map: only the map's own cells are looked at
+  }
+  return distance_to_known_.ptr<float>(y)[x] <= cells;
+}
+
+WallAgreement wallAgreement(const WallField& from, const WallField& to,
+                            const GridTransform& T_to_from) {
+  WallAgreement agreement;
+  const GridTransform T_from_to = T_to_from.inverse();
+  for (const Eigen::Vector2d& wall : from.walls()) {
+    const Eigen::Vector2d landed = T_to_from.apply(wall);
+    agreement.score += to.fieldAt(landed, Level::kFine);
+    agreement.counted += to.isKnown(landed) ? 1 : 0;
+  }
+  for (const Eigen::Vector2d& wall : to.walls()) {
+    const Eigen::Vector2d landed = T_from_to.apply(wall);
+    agreement.score += from.fieldAt(landed, Level::kFine);
+    agreement.counted += from.isKnown(landed) ? 1 : 0;
+  }
+  return agreement;
+}
+
+GridTransform alignWalls(const WallField& from, const WallField& to, const GridTransform& T_to_from,
+                         const WallAlignmentSettings& settings) {
+  if (wallAgreement(from, to, T_to_from).counted < settings.min_walls) {
+    return T_to_from;
+  }
+  const OffsetScorer scorer(from, to, T_to_from, settings);
+  const double at_start = scorer.score({}, Level::kFine);
+  const Best best = searchPattern(scorer, settings, searchGrid(scorer, settings));
+  return best.score > at_start ? scorer.transform(best.offset) : T_to_from;
+}
+
+void alignAccepted(const GridMap& from, const GridMap& to, const WallAlignmentSettings& settings,
+                   const SimilaritySettings& classes, MergeResult& result) {
+  if (!settings.enabled || !result.accepted) {
+    return;
+  }
+  const WallField field_from(from, classes, settings);
+  const WallField field_to(to, classes, settings);
+  const GridTransform aligned = alignWalls(field_from, field_to, result.T_to_from, settings);
+  const ComparisonTables tables(classes);
+  const std::vector<CellSample> cells_from = knownCells(from, tables);
+  const CodeImage codes_to = codeImage(to, 1, tables);
+  const Agreement at_found = compareAt(cells_from, codes_to, result.T_to_from, tables);
+  const Agreement at_aligned = compareAt(cells_from, codes_to, aligned, tables);
+  // The walls may pull a little off where the cells of the two maps agree best (crops resampled
+  // differently, a wall doubled by pose error): the alignment never lowers V.
+  const bool keep = verificationIndex(at_aligned) >= verificationIndex(at_found);
+  const Agreement& full = keep ? at_aligned : at_found;
+  result.T_to_from = keep ? aligned : result.T_to_from;
+  result.verification = verificationIndex(full);
+  result.entropy = mergedEntropy(mapEntropy(from, tables), mapEntropy(to, tables), full);
+}
+
+}  // namespace mrslam::fusion
