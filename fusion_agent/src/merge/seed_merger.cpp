@@ -63,6 +63,12 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
   }
   inputs.pivot_from /= std::max<double>(1.0, static_cast<double>(inputs.all_samples.size()));
   inputs.to = codeImage(to, settings_.translation_window_delta + 2, tables_);
+  if (settings_.wall_anchor && settings_.settle_alignment) {
+    inputs.walls_from =
+        std::make_shared<WallField>(from, settings_.similarity, settings_.wall_alignment);
+    inputs.walls_to =
+        std::make_shared<WallField>(to, settings_.similarity, settings_.wall_alignment);
+  }
   inputs.from = codeImage(from, 1, tables_);
   for (const CellSample& cell : knownCells(to, tables_)) {
     if (tables_.isOccupied(cell.code)) {

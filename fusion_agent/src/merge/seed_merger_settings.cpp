@@ -177,6 +177,7 @@ void readAlignmentSettings(const Config& section, SeedMergerSettings& settings) 
       section.getDouble("wall_alignment_turn_deg", alignment.max_turn_deg, {0.0, 10.0});
   alignment.max_shift_cells =
       section.getDouble("wall_alignment_shift_cells", alignment.max_shift_cells, {0.0, 20.0});
+  settings.settle_alignment = section.getBool("settle_alignment", settings.settle_alignment);
 }
 
 }  // namespace

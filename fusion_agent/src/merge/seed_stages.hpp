@@ -2,6 +2,7 @@
 // Private stages of SeedMerger (seed_merger.hpp summarises the pipeline): each stage is a
 // function of the prepared maps, so merge() reads as the list of blocks.
 
+#include <memory>
 #include <optional>
 #include <random>
 #include <vector>
@@ -102,6 +103,8 @@ struct SearchInputs {
   std::vector<CellSample> occupied_to_samples;    ///< an even sample of them (wall balance)
   std::vector<CellSample> occupied_from_samples;  ///< occupied cells of coarse_samples (same)
   CodeImage from;                                 ///< `from` as codes (structure check, reversed)
+  std::shared_ptr<const WallField> walls_from;    ///< with settle_alignment: `from`'s wall field
+  std::shared_ptr<const WallField> walls_to;      ///< ... and `to`'s
 };
 
 /// Block 8 for one hypothesis: the best shift within ±δ on the coarse samples.
@@ -201,7 +204,9 @@ GridTransform polishRotation(const GridTransform& T_to_from, const SearchInputs&
 
 /// Step 7 with `wall_anchor` (wall_anchor.cpp): the translation by anchorOnWalls first, then the
 /// rotation polish, ±1 cell by agr - dis and walls onto walls by ICP (kept when agr - dis or the
-/// wall balance is at least as high), none of which can slide far. `coarse` is block 8's ±δ
+/// wall balance is at least as high), none of which can slide far; with `settle_alignment`, the
+/// anchored transform aligned on both maps' walls (alignWalls) instead where V is at least as
+/// high. `coarse` is block 8's ±δ
 /// search around the result (for the entropy figures); the translation ambiguity is the larger
 /// of the wall balance's and agr - dis's runner-up share.
 Refined settleOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs,

@@ -5,10 +5,11 @@
 // discrete searches of agr - dis and the wall ICP then settle the last cell and degree.
 
 #include <algorithm>
-#include <cstdlib>
 #include <optional>
 #include <utility>
 #include <vector>
+
+#include <cstdlib>
 
 #include "seed_stages.hpp"
 
@@ -91,6 +92,40 @@ WallSearch anchorOnWalls(const GridTransform& T_to_from, int reach, const Search
   return search;
 }
 
+namespace {
+
+// Step 7's walls onto walls by ICP: `refined` moves there when agr - dis or the wall balance is
+// at least as high.
+void keepIcpOnWalls(const SearchInputs& inputs, const ComparisonTables& tables,
+                    const SeedMergerSettings& settings, Refined& refined) {
+  const GridTransform on_walls = refineOnWalls(refined.T_to_from, inputs, tables, settings);
+  const Agreement at_walls = compareAt(inputs.all_samples, inputs.to, on_walls, tables);
+  if (at_walls.similarity() >= refined.full.similarity() ||
+      wallBalance(on_walls, inputs, tables) >= wallBalance(refined.T_to_from, inputs, tables)) {
+    refined.T_to_from = on_walls;
+    refined.full = at_walls;
+  }
+}
+
+// With `settle_alignment`: the wall-anchored transform aligned on both maps' walls replaces
+// `refined` where V is at least as high there.
+void keepAlignedWhereVHolds(const GridTransform& anchored, const SearchInputs& inputs,
+                            const ComparisonTables& tables, const SeedMergerSettings& settings,
+                            Refined& refined) {
+  if (!settings.settle_alignment || !inputs.walls_from || !inputs.walls_to) {
+    return;
+  }
+  const GridTransform aligned =
+      alignWalls(*inputs.walls_from, *inputs.walls_to, anchored, settings.wall_alignment);
+  const Agreement at_aligned = compareAt(inputs.all_samples, inputs.to, aligned, tables);
+  if (verificationIndex(at_aligned) >= verificationIndex(refined.full)) {
+    refined.T_to_from = aligned;
+    refined.full = at_aligned;
+  }
+}
+
+}  // namespace
+
 Refined settleOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs,
                       const ComparisonTables& tables, const SeedMergerSettings& settings,
                       TranslationSearch& coarse) {
@@ -102,14 +137,9 @@ Refined settleOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs
       searchTranslation(inputs.fine_samples, inputs.to, polished, 1, tables, false).best_similarity;
   refined.full = compareAt(inputs.all_samples, inputs.to, refined.T_to_from, tables);
   if (settings.wall_icp_iterations > 0) {
-    const GridTransform on_walls = refineOnWalls(refined.T_to_from, inputs, tables, settings);
-    const Agreement at_walls = compareAt(inputs.all_samples, inputs.to, on_walls, tables);
-    if (at_walls.similarity() >= refined.full.similarity() ||
-        wallBalance(on_walls, inputs, tables) >= wallBalance(refined.T_to_from, inputs, tables)) {
-      refined.T_to_from = on_walls;
-      refined.full = at_walls;
-    }
+    keepIcpOnWalls(inputs, tables, settings, refined);
   }
+  keepAlignedWhereVHolds(anchored, inputs, tables, settings, refined);
   const WallSearch walls = anchorOnWalls(refined.T_to_from, reach, inputs, tables);
   coarse =
       searchTranslation(inputs.coarse_samples, inputs.to, refined.T_to_from, reach, tables, true);
