@@ -176,7 +176,12 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
   }
   judge(refined, from, to, result);  // block 9
   lap(clock, timings_.verification);
-  alignAccepted(from, to, settings_.wall_alignment, settings_.similarity, result);
+  if (inputs.walls_from && inputs.walls_to) {  // block 8's fields, when it settled on them
+    alignAccepted(from, to, *inputs.walls_from, *inputs.walls_to, settings_.wall_alignment,
+                  settings_.similarity, result);
+  } else {
+    alignAccepted(from, to, settings_.wall_alignment, settings_.similarity, result);
+  }
   lap(clock, timings_.alignment);
   return result;
 }

@@ -178,6 +178,12 @@ void readAlignmentSettings(const Config& section, SeedMergerSettings& settings) 
   alignment.max_shift_cells =
       section.getDouble("wall_alignment_shift_cells", alignment.max_shift_cells, {0.0, 20.0});
   settings.settle_alignment = section.getBool("settle_alignment", settings.settle_alignment);
+  alignment.turn_check_deg =
+      section.getDouble("wall_turn_check_deg", alignment.turn_check_deg, {0.1, 45.0});
+  alignment.turn_check_shift_cells = section.getDouble(
+      "wall_turn_check_shift_cells", alignment.turn_check_shift_cells, {0.0, 20.0});
+  alignment.max_turn_share =
+      section.getDouble("max_wall_turn_share", alignment.max_turn_share, {0.0, 10.0});
 }
 
 }  // namespace

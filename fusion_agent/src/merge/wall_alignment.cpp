@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 
 namespace mrslam::fusion {
 
@@ -340,13 +341,45 @@ GridTransform alignWalls(const WallField& from, const WallField& to, const GridT
   return best.score > at_start ? scorer.transform(best.offset) : T_to_from;
 }
 
+double wallTurnShare(const WallField& from, const WallField& to, const GridTransform& T_to_from,
+                     const WallAlignmentSettings& settings) {
+  const WallAgreement at = wallAgreement(from, to, T_to_from);
+  if (at.counted < settings.min_walls || at.score <= 0.0) {
+    return 0.0;
+  }
+  const Eigen::Vector2d pivot = overlapPivot(from, to, T_to_from);
+  const Eigen::Vector2d landed = T_to_from.apply(pivot);
+  WallAlignmentSettings shifts_only = settings;
+  shifts_only.max_turn_deg = 0.0;
+  shifts_only.max_shift_cells = settings.turn_check_shift_cells;
+  double largest = 0.0;
+  for (const double sign : {-1.0, 1.0}) {
+    GridTransform turned = T_to_from;
+    turned.theta_rad += sign * settings.turn_check_deg * kDegToRad;
+    GridTransform turn_only;
+    turn_only.theta_rad = turned.theta_rad;
+    turned.t_cells = landed - turn_only.apply(pivot);
+    const GridTransform placed = alignWalls(from, to, turned, shifts_only);
+    largest = std::max(largest, wallAgreement(from, to, placed).score / at.score);
+  }
+  return largest;
+}
+
 void alignAccepted(const GridMap& from, const GridMap& to, const WallAlignmentSettings& settings,
                    const SimilaritySettings& classes, MergeResult& result) {
   if (!settings.enabled || !result.accepted) {
     return;
   }
-  const WallField field_from(from, classes, settings);
-  const WallField field_to(to, classes, settings);
+  alignAccepted(from, to, WallField(from, classes, settings), WallField(to, classes, settings),
+                settings, classes, result);
+}
+
+void alignAccepted(const GridMap& from, const GridMap& to, const WallField& field_from,
+                   const WallField& field_to, const WallAlignmentSettings& settings,
+                   const SimilaritySettings& classes, MergeResult& result) {
+  if (!settings.enabled || !result.accepted) {
+    return;
+  }
   const GridTransform aligned = alignWalls(field_from, field_to, result.T_to_from, settings);
   const ComparisonTables tables(classes);
   const std::vector<CellSample> cells_from = knownCells(from, tables);
@@ -360,6 +393,17 @@ void alignAccepted(const GridMap& from, const GridMap& to, const WallAlignmentSe
   result.T_to_from = keep ? aligned : result.T_to_from;
   result.verification = verificationIndex(full);
   result.entropy = mergedEntropy(mapEntropy(from, tables), mapEntropy(to, tables), full);
+  if (settings.max_turn_share < 1.0) {
+    const double share = wallTurnShare(field_from, field_to, result.T_to_from, settings);
+    if (share >= settings.max_turn_share) {
+      std::ostringstream reason;
+      reason.precision(3);
+      reason << "the walls of the overlap do not fix the rotation: turned by "
+             << settings.turn_check_deg << " degrees they meet " << share << " as well";
+      result.accepted = false;
+      result.reason = reason.str();
+    }
+  }
 }
 
 }  // namespace mrslam::fusion

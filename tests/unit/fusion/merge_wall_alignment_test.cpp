@@ -327,5 +327,77 @@ TEST(WallAlignmentTest, SettlingOnAlignedWallsTurnsRefusalsIntoRightMerges) {
   }
 }
 
+// A round room: turned about its centre, its wall lies on itself, so it fixes no rotation.
+GridMap drawRoundRoom(const GridTransform& T_grid_world) {
+  GridGeometry geometry;
+  geometry.width = 100;
+  geometry.height = 100;
+  GridMap map(geometry, GridMap::kUnknown);
+  const GridTransform T_world_grid = T_grid_world.inverse();
+  const Eigen::Vector2d centre(45.0, 45.0);
+  for (int y = 0; y < geometry.height; ++y) {
+    for (int x = 0; x < geometry.width; ++x) {
+      const double radius = (T_world_grid.apply(Eigen::Vector2d(x, y)) - centre).norm();
+      if (std::abs(radius - 25.0) <= 0.5) {
+        map.at(x, y) = GridMap::kOccupied;
+      } else if (radius < 25.0) {
+        map.at(x, y) = GridMap::kFree;
+      }
+    }
+  }
+  return map;
+}
+
+TEST(WallAlignmentTest, TheTurnCheckTellsARoundRoomFromAnLShapedOne) {
+  const WallAlignmentSettings settings;
+  const SimilaritySettings classes;
+  const DrawnPair room = drawnPair();
+  const WallField room_from(room.from, classes, settings);
+  const WallField room_to(room.to, classes, settings);
+  EXPECT_LT(wallTurnShare(room_from, room_to, room.T_to_from, settings), 0.8);
+
+  // Turned and shifted between cells, as two robots' grids are: neither room's cells meet the
+  // other's exactly at the truth.
+  const GridTransform T_to_from = transformOf(17.0, 13.3, -8.6);
+  const GridMap round_from = drawRoundRoom(GridTransform{});
+  const GridMap round_to = drawRoundRoom(T_to_from);
+  const WallField from(round_from, classes, settings);
+  const WallField to(round_to, classes, settings);
+  EXPECT_GE(wallTurnShare(from, to, T_to_from, settings), settings.max_turn_share);
+
+  MergeResult result;
+  result.accepted = true;
+  result.T_to_from = T_to_from;
+  alignAccepted(round_from, round_to, settings, classes, result);
+  EXPECT_FALSE(result.accepted);
+  EXPECT_NE(result.reason.find("do not fix the rotation"), std::string::npos) << result.reason;
+
+  WallAlignmentSettings off = settings;
+  off.max_turn_share = 1.0;
+  result.accepted = true;
+  alignAccepted(round_from, round_to, off, classes, result);
+  EXPECT_TRUE(result.accepted);
+}
+
+// Case 165 of `--seed 3`: crop A's walls meet crop B only in a thin strip along B's window edge,
+// where they are the stubs of room walls; the chain accepted a transform 2.6 cells and 1.4° off.
+const merge_test::CropPair kStubsAlongAnEdge{
+    "carpin-robot1_cast.txt",
+    165,
+    {{80, -71}, 243, -2.8966120672679008, {29, 21}, {16, 34}},
+    {{84, 145}, 219, -0.02164073794931376, {22, 4}, {16, 6}}};
+
+TEST(WallAlignmentTest, AnOverlapWhoseWallsDoNotFixTheRotationIsRefused) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
+  const MergeCase merge_case = merge_test::cut(kStubsAlongAnEdge);
+  const MergeResult result = makeMerger("chain")->merge(merge_case.a, merge_case.b);
+  EXPECT_FALSE(result.accepted) << caseError(merge_case, result.T_to_from).distance_cells
+                                << " cells from the truth";
+  const Config unchecked = Config::loadString("seed:\n  max_wall_turn_share: 1\n", "merge.yaml");
+  const MergeResult guessed = makeMergerFrom("chain", unchecked)->merge(merge_case.a, merge_case.b);
+  ASSERT_TRUE(guessed.accepted) << guessed.reason;
+  EXPECT_FALSE(isCorrect(caseError(merge_case, guessed.T_to_from)));
+}
+
 }  // namespace
 }  // namespace mrslam::fusion
