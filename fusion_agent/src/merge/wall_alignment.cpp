@@ -365,6 +365,27 @@ double wallTurnShare(const WallField& from, const WallField& to, const GridTrans
   return largest;
 }
 
+namespace {
+
+// The turn check: `result` refused when its walls meet as well turned (wallTurnShare).
+void refuseUnlessTurnFixed(const WallField& from, const WallField& to,
+                           const WallAlignmentSettings& settings, MergeResult& result) {
+  if (settings.max_turn_share >= 1.0) {
+    return;
+  }
+  const double share = wallTurnShare(from, to, result.T_to_from, settings);
+  if (share >= settings.max_turn_share) {
+    std::ostringstream reason;
+    reason.precision(3);
+    reason << "the walls of the overlap do not fix the rotation: turned by "
+           << settings.turn_check_deg << " degrees they meet " << share << " as well";
+    result.accepted = false;
+    result.reason = reason.str();
+  }
+}
+
+}  // namespace
+
 void alignAccepted(const GridMap& from, const GridMap& to, const WallAlignmentSettings& settings,
                    const SimilaritySettings& classes, MergeResult& result) {
   if (!settings.enabled || !result.accepted) {
@@ -393,17 +414,7 @@ void alignAccepted(const GridMap& from, const GridMap& to, const WallField& fiel
   result.T_to_from = keep ? aligned : result.T_to_from;
   result.verification = verificationIndex(full);
   result.entropy = mergedEntropy(mapEntropy(from, tables), mapEntropy(to, tables), full);
-  if (settings.max_turn_share < 1.0) {
-    const double share = wallTurnShare(field_from, field_to, result.T_to_from, settings);
-    if (share >= settings.max_turn_share) {
-      std::ostringstream reason;
-      reason.precision(3);
-      reason << "the walls of the overlap do not fix the rotation: turned by "
-             << settings.turn_check_deg << " degrees they meet " << share << " as well";
-      result.accepted = false;
-      result.reason = reason.str();
-    }
-  }
+  refuseUnlessTurnFixed(field_from, field_to, settings, result);
 }
 
 }  // namespace mrslam::fusion
