@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "mrslam/fusion/merge/wall_balance.hpp"
 #include "seed_stages.hpp"
 
 namespace mrslam::fusion {
@@ -70,6 +71,8 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
         std::make_shared<WallField>(to, settings_.similarity, settings_.wall_alignment);
   }
   inputs.from = codeImage(from, 1, tables_);
+  inputs.wall_balance_to = wallBalanceImage(inputs.to);
+  inputs.wall_balance_from = wallBalanceImage(inputs.from);
   for (const CellSample& cell : knownCells(to, tables_)) {
     if (tables_.isOccupied(cell.code)) {
       inputs.occupied_to.push_back(cell);

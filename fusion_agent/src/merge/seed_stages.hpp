@@ -103,6 +103,8 @@ struct SearchInputs {
   std::vector<CellSample> occupied_to_samples;    ///< an even sample of them (wall balance)
   std::vector<CellSample> occupied_from_samples;  ///< occupied cells of coarse_samples (same)
   CodeImage from;                                 ///< `from` as codes (structure check, reversed)
+  cv::Mat wall_balance_to;                        ///< wallBalanceImage(to) (wall anchoring)
+  cv::Mat wall_balance_from;                      ///< wallBalanceImage(from) (same, reversed)
   std::shared_ptr<const WallField> walls_from;    ///< with settle_alignment: `from`'s wall field
   std::shared_ptr<const WallField> walls_to;      ///< ... and `to`'s
 };

@@ -257,65 +257,6 @@ StructureAgreement structureAgreement(const std::vector<CellSample>& samples, co
   return sums;
 }
 
-namespace {
-
-// The occupied samples turned by theta, summed in the order place() sums them, so that the cells
-// of a transform are place()'s to the last bit.
-std::vector<Eigen::Vector2d> turnedOccupied(const std::vector<CellSample>& samples, double theta,
-                                            const ComparisonTables& tables) {
-  const double c = std::cos(theta);
-  const double s = std::sin(theta);
-  std::vector<Eigen::Vector2d> turned;
-  turned.reserve(samples.size());
-  for (const CellSample& sample : samples) {
-    if (3 * tables.classOf(sample.code) == 6) {  // place()'s class row of an occupied sample
-      turned.emplace_back(c * sample.x - s * sample.y, s * sample.x + c * sample.y);
-    }
-  }
-  return turned;
-}
-
-}  // namespace
-
-std::vector<StructureAgreement> structureAgreements(const std::vector<CellSample>& samples,
-                                                    const CodeImage& to,
-                                                    const std::vector<GridTransform>& transforms,
-                                                    const ComparisonTables& tables) {
-  std::vector<StructureAgreement> all(transforms.size());
-  if (transforms.empty()) {
-    return all;
-  }
-  const std::vector<Eigen::Vector2d> turned =
-      turnedOccupied(samples, transforms.front().theta_rad, tables);
-  std::vector<double> tx;  // the offsets place() adds, per transform
-  std::vector<double> ty;
-  for (const GridTransform& T_to_from : transforms) {
-    tx.push_back(T_to_from.t_cells.x() + 0.5);
-    ty.push_back(T_to_from.t_cells.y() + 0.5);
-  }
-  const std::uint8_t* classes = to.classes.ptr<std::uint8_t>(0);
-  const std::uint8_t* near = to.near_occupied.ptr<std::uint8_t>(0);
-  const int high_x = to.codes.cols - to.pad - 1;
-  const int high_y = to.codes.rows - to.pad - 1;
-  // Sample by sample, all transforms in turn: shifts of one transform read neighbouring cells.
-  for (const Eigen::Vector2d& p : turned) {
-    for (std::size_t k = 0; k < transforms.size(); ++k) {
-      const int x = floorToInt(p.x() + tx[k]);
-      const int y = floorToInt(p.y() + ty[k]);
-      if (x < -to.pad || y < -to.pad || x > high_x || y > high_y) {
-        continue;
-      }
-      const std::ptrdiff_t index =
-          static_cast<std::ptrdiff_t>(y + to.pad) * to.codes.cols + x + to.pad;
-      if (classes[index] != 0) {
-        all[k].near += near[index] != 0 ? 1 : 0;
-        all[k].far += near[index] != 0 ? 0 : 1;
-      }
-    }
-  }
-  return all;
-}
-
 Eigen::Vector2d knownCentroid(const GridMap& map) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   double known = 0.0;

@@ -11,33 +11,23 @@
 
 #include <cstdlib>
 
+#include "mrslam/fusion/merge/wall_balance.hpp"
 #include "seed_stages.hpp"
 
 namespace mrslam::fusion::seed {
 
 namespace {
 
-// The wall balance at every shift of T_to_from within ±reach, in row order (dy, then dx): each
-// map's wall samples are turned once for all the shifts.
+// The wall balance at every shift of T_to_from within ±reach, in row order (dy, then dx): the
+// walls of `from` on `to` plus those of `to` on `from`.
 std::vector<long long> shiftedBalances(const GridTransform& T_to_from, int reach,
                                        const SearchInputs& inputs, const ComparisonTables& tables) {
-  std::vector<GridTransform> forward;
-  std::vector<GridTransform> backward;
-  for (int dy = -reach; dy <= reach; ++dy) {
-    for (int dx = -reach; dx <= reach; ++dx) {
-      GridTransform shifted = T_to_from;
-      shifted.t_cells += Eigen::Vector2d(dx, dy);
-      forward.push_back(shifted);
-      backward.push_back(shifted.inverse());
-    }
-  }
-  const std::vector<StructureAgreement> onto_to =
-      structureAgreements(inputs.occupied_from_samples, inputs.to, forward, tables);
-  const std::vector<StructureAgreement> onto_from =
-      structureAgreements(inputs.occupied_to_samples, inputs.from, backward, tables);
-  std::vector<long long> balances;
-  for (std::size_t k = 0; k < forward.size(); ++k) {
-    balances.push_back(onto_to[k].near - onto_to[k].far + onto_from[k].near - onto_from[k].far);
+  std::vector<long long> balances = wallBalancesAfterShifts(
+      inputs.occupied_from_samples, inputs.to, inputs.wall_balance_to, T_to_from, reach, tables);
+  const std::vector<long long> onto_from = wallBalancesOfInverseShifts(
+      inputs.occupied_to_samples, inputs.from, inputs.wall_balance_from, T_to_from, reach, tables);
+  for (std::size_t k = 0; k < balances.size(); ++k) {
+    balances[k] += onto_from[k];
   }
   return balances;
 }

@@ -134,48 +134,6 @@ TEST(MergeSimilarityTest, StructureAgreementCountsWallsLandingNearWalls) {
   EXPECT_DOUBLE_EQ(sums.index(), 0.5);
 }
 
-TEST(MergeSimilarityTest, StructureAgreementsAtShiftsEqualOneCallEach) {
-  const GridMap map = rooms();
-  const ComparisonTables tables{SimilaritySettings{}};
-  const std::vector<CellSample> samples = knownCells(map, tables);
-  const CodeImage image = codeImage(map, 3, tables);
-  GridTransform base;
-  base.theta_rad = 0.05;  // turned a little and shifted by fractions, as a candidate is
-  base.t_cells = Eigen::Vector2d(1.37, -0.62);
-  std::vector<GridTransform> shifted;
-  for (int dy = -6; dy <= 6; ++dy) {
-    for (int dx = -6; dx <= 6; ++dx) {
-      GridTransform T = base;
-      T.t_cells += Eigen::Vector2d(dx, dy);
-      shifted.push_back(T);
-    }
-  }
-  std::vector<GridTransform> inverses;  // another rotation: a batch of its own
-  for (const GridTransform& T : shifted) {
-    inverses.push_back(T.inverse());
-  }
-  const std::vector<StructureAgreement> batch =
-      structureAgreements(samples, image, shifted, tables);
-  const std::vector<StructureAgreement> back =
-      structureAgreements(samples, image, inverses, tables);
-  ASSERT_EQ(batch.size(), shifted.size());
-  ASSERT_EQ(back.size(), inverses.size());
-  long long walls_met = 0;
-  for (std::size_t k = 0; k < shifted.size(); ++k) {
-    const StructureAgreement one = structureAgreement(samples, image, shifted[k], tables);
-    EXPECT_EQ(batch[k].near, one.near) << k;
-    EXPECT_EQ(batch[k].far, one.far) << k;
-    walls_met += one.near;
-  }
-  for (std::size_t k = 0; k < inverses.size(); ++k) {
-    const StructureAgreement one = structureAgreement(samples, image, inverses[k], tables);
-    EXPECT_EQ(back[k].near, one.near) << k;
-    EXPECT_EQ(back[k].far, one.far) << k;
-  }
-  EXPECT_GT(walls_met, 0);  // the comparison is not of empty sums
-  EXPECT_TRUE(structureAgreements(samples, image, {}, tables).empty());
-}
-
 TEST(MergeSimilarityTest, SampleTakesEvenShareOfEachClass) {
   const GridMap map = rooms();
   const ComparisonTables tables{SimilaritySettings{}};

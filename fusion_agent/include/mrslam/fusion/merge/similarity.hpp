@@ -125,12 +125,6 @@ struct StructureAgreement {
 StructureAgreement structureAgreement(const std::vector<CellSample>& samples, const CodeImage& to,
                                       const GridTransform& T_to_from,
                                       const ComparisonTables& tables);
-/// structureAgreement() at each of `transforms`, which must share one rotation (shifts of one
-/// transform, or their inverses): the samples are turned once. Equal to calling it for each.
-std::vector<StructureAgreement> structureAgreements(const std::vector<CellSample>& samples,
-                                                    const CodeImage& to,
-                                                    const std::vector<GridTransform>& transforms,
-                                                    const ComparisonTables& tables);
 
 /// The result of block 8.
 struct TranslationSearch {

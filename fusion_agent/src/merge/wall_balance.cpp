@@ -1,0 +1,146 @@
+#include "mrslam/fusion/merge/wall_balance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace mrslam::fusion {
+
+namespace {
+
+// static_cast<int>(std::floor(v)) for |v| < 2^31, as place() rounds.
+inline int floorToInt(double v) {
+  const int truncated = static_cast<int>(v);
+  return v < truncated ? truncated - 1 : truncated;
+}
+
+bool isWallSample(const CellSample& sample, const ComparisonTables& tables) {
+  return tables.classOf(sample.code) == 2;
+}
+
+// Σ over `centres` of the (2 reach + 1)² window of `values` (CV_8S) around each, window cells
+// outside the image counting 0; in row order of the offset (dy, then dx).
+std::vector<long long> windowSums(const cv::Mat& values, const std::vector<cv::Point>& centres,
+                                  int reach) {
+  const int side = 2 * reach + 1;
+  std::vector<std::int32_t> sums(static_cast<std::size_t>(side * side), 0);
+  for (const cv::Point& centre : centres) {
+    const int left = centre.x - reach;
+    const int top = centre.y - reach;
+    if (left >= 0 && top >= 0 && left + side <= values.cols && top + side <= values.rows) {
+      for (int row = 0; row < side; ++row) {  // inside: whole rows, no checks
+        const std::int8_t* cells = values.ptr<std::int8_t>(top + row) + left;
+        std::int32_t* out = sums.data() + row * side;
+        for (int column = 0; column < side; ++column) {
+          out[column] += cells[column];
+        }
+      }
+      continue;
+    }
+    for (int row = 0; row < side; ++row) {  // across the border: cell by cell
+      const int y = top + row;
+      for (int column = 0; y >= 0 && y < values.rows && column < side; ++column) {
+        const int x = left + column;
+        if (x >= 0 && x < values.cols) {
+          sums[static_cast<std::size_t>(row * side + column)] += values.at<std::int8_t>(y, x);
+        }
+      }
+    }
+  }
+  return {sums.begin(), sums.end()};
+}
+
+// The balance of `from` read through T_from_to at the cells origin + (column, row) of `to` for
+// an image of `size`; 0 off `from`'s padded image.
+cv::Mat readThrough(const CodeImage& from, const cv::Mat& balance_from,
+                    const GridTransform& T_from_to, const cv::Point& origin, const cv::Size& size) {
+  cv::Mat read_through(size, CV_8S, cv::Scalar(0));
+  const double c = std::cos(T_from_to.theta_rad);
+  const double s = std::sin(T_from_to.theta_rad);
+  const double tx = T_from_to.t_cells.x() + 0.5;
+  const double ty = T_from_to.t_cells.y() + 0.5;
+  const int high_x = from.codes.cols - from.pad - 1;
+  const int high_y = from.codes.rows - from.pad - 1;
+  for (int row = 0; row < size.height; ++row) {
+    std::int8_t* out = read_through.ptr<std::int8_t>(row);
+    const int qy = origin.y + row;
+    for (int column = 0; column < size.width; ++column) {
+      const int qx = origin.x + column;
+      const int x = floorToInt(c * qx - s * qy + tx);
+      const int y = floorToInt(s * qx + c * qy + ty);
+      if (x >= -from.pad && y >= -from.pad && x <= high_x && y <= high_y) {
+        out[column] = balance_from.at<std::int8_t>(y + from.pad, x + from.pad);
+      }
+    }
+  }
+  return read_through;
+}
+
+}  // namespace
+
+cv::Mat wallBalanceImage(const CodeImage& image) {
+  cv::Mat balance(image.classes.size(), CV_8S, cv::Scalar(0));
+  for (int y = 0; y < balance.rows; ++y) {
+    const std::uint8_t* classes = image.classes.ptr<std::uint8_t>(y);
+    const std::uint8_t* near = image.near_occupied.ptr<std::uint8_t>(y);
+    std::int8_t* out = balance.ptr<std::int8_t>(y);
+    for (int x = 0; x < balance.cols; ++x) {
+      out[x] = classes[x] == 0 ? 0 : (near[x] != 0 ? 1 : -1);
+    }
+  }
+  return balance;
+}
+
+std::vector<long long> wallBalancesAfterShifts(const std::vector<CellSample>& samples,
+                                               const CodeImage& to, const cv::Mat& balance_to,
+                                               const GridTransform& T_to_from, int reach,
+                                               const ComparisonTables& tables) {
+  // Each wall sample's cell in the padded image of `to` at the unshifted transform; a shift
+  // moves every cell by the same whole cells.
+  const double c = std::cos(T_to_from.theta_rad);
+  const double s = std::sin(T_to_from.theta_rad);
+  const double tx = T_to_from.t_cells.x() + 0.5;
+  const double ty = T_to_from.t_cells.y() + 0.5;
+  std::vector<cv::Point> centres;
+  centres.reserve(samples.size());
+  for (const CellSample& sample : samples) {
+    if (isWallSample(sample, tables)) {
+      centres.emplace_back(floorToInt(c * sample.x - s * sample.y + tx) + to.pad,
+                           floorToInt(s * sample.x + c * sample.y + ty) + to.pad);
+    }
+  }
+  return windowSums(balance_to, centres, reach);
+}
+
+std::vector<long long> wallBalancesOfInverseShifts(const std::vector<CellSample>& samples_to,
+                                                   const CodeImage& from,
+                                                   const cv::Mat& balance_from,
+                                                   const GridTransform& T_to_from, int reach,
+                                                   const ComparisonTables& tables) {
+  // (T shifted by d)⁻¹ q = T⁻¹ (q - d): the balance of `from` read through T⁻¹ at every cell of
+  // `to` the shifted samples reach, then window sums around the samples, offsets reversed.
+  std::vector<cv::Point> walls;
+  cv::Rect bounds;
+  for (const CellSample& sample : samples_to) {
+    if (isWallSample(sample, tables)) {
+      walls.emplace_back(sample.x, sample.y);
+      bounds = walls.size() == 1 ? cv::Rect(walls.back(), cv::Size(1, 1))
+                                 : (bounds | cv::Rect(walls.back(), cv::Size(1, 1)));
+    }
+  }
+  const int side = 2 * reach + 1;
+  if (walls.empty()) {
+    return std::vector<long long>(static_cast<std::size_t>(side * side), 0);
+  }
+  const cv::Point origin = bounds.tl() - cv::Point(reach, reach);
+  for (cv::Point& wall : walls) {
+    wall -= origin;
+  }
+  const cv::Size size(bounds.width + 2 * reach, bounds.height + 2 * reach);
+  const cv::Mat read_through = readThrough(from, balance_from, T_to_from.inverse(), origin, size);
+  std::vector<long long> by_offset = windowSums(read_through, walls, reach);
+  std::reverse(by_offset.begin(), by_offset.end());  // offset -d is shift d
+  return by_offset;
+}
+
+}  // namespace mrslam::fusion
