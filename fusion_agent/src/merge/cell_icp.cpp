@@ -13,66 +13,6 @@ namespace {
 
 constexpr int kMargin = 8;  // cells around `to`'s walls where nearest walls are looked up
 
-// For every cell near `to`'s walls, the nearest wall cell (by a labelled distance transform).
-class NearestWall {
- public:
-  explicit NearestWall(const std::vector<CellSample>& walls) {
-    if (walls.empty()) {
-      return;
-    }
-    cv::Point low(walls.front().x, walls.front().y);
-    cv::Point high = low;
-    for (const CellSample& wall : walls) {
-      low = {std::min(low.x, wall.x), std::min(low.y, wall.y)};
-      high = {std::max(high.x, wall.x), std::max(high.y, wall.y)};
-    }
-    origin_ = low - cv::Point(kMargin, kMargin);
-    cv::Mat free(high.y - low.y + 1 + 2 * kMargin, high.x - low.x + 1 + 2 * kMargin, CV_8U,
-                 cv::Scalar(1));
-    for (const CellSample& wall : walls) {
-      free.at<std::uint8_t>(wall.y - origin_.y, wall.x - origin_.x) = 0;
-    }
-    cv::distanceTransform(free, distance_, labels_, cv::DIST_L2, cv::DIST_MASK_5,
-                          cv::DIST_LABEL_PIXEL);
-    wall_of_label_.assign(static_cast<std::size_t>(walls.size()) + 1, cv::Point());
-    for (int y = 0; y < free.rows; ++y) {
-      for (int x = 0; x < free.cols; ++x) {
-        if (free.at<std::uint8_t>(y, x) == 0) {
-          const int label = labels_.at<int>(y, x);
-          if (label >= 0 && static_cast<std::size_t>(label) < wall_of_label_.size()) {
-            wall_of_label_[static_cast<std::size_t>(label)] = cv::Point(x, y) + origin_;
-          }
-        }
-      }
-    }
-  }
-
-  /// The wall cell nearest to `point` (cells of `to`) within `max_distance`, if any.
-  std::optional<Eigen::Vector2d> near(const Eigen::Vector2d& point, double max_distance) const {
-    const int x = static_cast<int>(std::lround(point.x())) - origin_.x;
-    const int y = static_cast<int>(std::lround(point.y())) - origin_.y;
-    if (labels_.empty() || x < 0 || y < 0 || x >= labels_.cols || y >= labels_.rows) {
-      return std::nullopt;
-    }
-    const int label = labels_.at<int>(y, x);
-    if (label < 0 || static_cast<std::size_t>(label) >= wall_of_label_.size()) {
-      return std::nullopt;
-    }
-    const cv::Point wall = wall_of_label_[static_cast<std::size_t>(label)];
-    const Eigen::Vector2d nearest(wall.x, wall.y);
-    if ((nearest - point).norm() > max_distance) {
-      return std::nullopt;
-    }
-    return nearest;
-  }
-
- private:
-  cv::Point origin_;
-  cv::Mat distance_;
-  cv::Mat labels_;
-  std::vector<cv::Point> wall_of_label_;
-};
-
 // The rigid transform (rotation, translation) that best maps `from` onto `to` (least squares).
 GridTransform fitRigid(const std::vector<Eigen::Vector2d>& from,
                        const std::vector<Eigen::Vector2d>& to) {
@@ -103,6 +43,56 @@ GridTransform fitRigid(const std::vector<Eigen::Vector2d>& from,
 
 }  // namespace
 
+NearestWall::NearestWall(const std::vector<CellSample>& walls) {
+  if (walls.empty()) {
+    return;
+  }
+  cv::Point low(walls.front().x, walls.front().y);
+  cv::Point high = low;
+  for (const CellSample& wall : walls) {
+    low = {std::min(low.x, wall.x), std::min(low.y, wall.y)};
+    high = {std::max(high.x, wall.x), std::max(high.y, wall.y)};
+  }
+  origin_ = low - cv::Point(kMargin, kMargin);
+  cv::Mat free(high.y - low.y + 1 + 2 * kMargin, high.x - low.x + 1 + 2 * kMargin, CV_8U,
+               cv::Scalar(1));
+  for (const CellSample& wall : walls) {
+    free.at<std::uint8_t>(wall.y - origin_.y, wall.x - origin_.x) = 0;
+  }
+  cv::distanceTransform(free, distance_, labels_, cv::DIST_L2, cv::DIST_MASK_5,
+                        cv::DIST_LABEL_PIXEL);
+  wall_of_label_.assign(static_cast<std::size_t>(walls.size()) + 1, cv::Point());
+  for (int y = 0; y < free.rows; ++y) {
+    for (int x = 0; x < free.cols; ++x) {
+      if (free.at<std::uint8_t>(y, x) == 0) {
+        const int label = labels_.at<int>(y, x);
+        if (label >= 0 && static_cast<std::size_t>(label) < wall_of_label_.size()) {
+          wall_of_label_[static_cast<std::size_t>(label)] = cv::Point(x, y) + origin_;
+        }
+      }
+    }
+  }
+}
+
+std::optional<Eigen::Vector2d> NearestWall::near(const Eigen::Vector2d& point,
+                                                 double max_distance) const {
+  const int x = static_cast<int>(std::lround(point.x())) - origin_.x;
+  const int y = static_cast<int>(std::lround(point.y())) - origin_.y;
+  if (labels_.empty() || x < 0 || y < 0 || x >= labels_.cols || y >= labels_.rows) {
+    return std::nullopt;
+  }
+  const int label = labels_.at<int>(y, x);
+  if (label < 0 || static_cast<std::size_t>(label) >= wall_of_label_.size()) {
+    return std::nullopt;
+  }
+  const cv::Point wall = wall_of_label_[static_cast<std::size_t>(label)];
+  const Eigen::Vector2d nearest(wall.x, wall.y);
+  if ((nearest - point).norm() > max_distance) {
+    return std::nullopt;
+  }
+  return nearest;
+}
+
 GridTransform refineOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs,
                             const ComparisonTables& tables, const SeedMergerSettings& settings) {
   std::vector<Eigen::Vector2d> walls_from;
@@ -111,14 +101,16 @@ GridTransform refineOnWalls(const GridTransform& T_to_from, const SearchInputs& 
       walls_from.emplace_back(sample.x, sample.y);
     }
   }
-  const NearestWall nearest(inputs.occupied_to);
+  const std::shared_ptr<const NearestWall> nearest =
+      inputs.nearest_wall_to ? inputs.nearest_wall_to
+                             : std::make_shared<const NearestWall>(inputs.occupied_to);
   GridTransform estimate = T_to_from;
   for (int iteration = 0; iteration < settings.wall_icp_iterations; ++iteration) {
     std::vector<Eigen::Vector2d> matched_from;
     std::vector<Eigen::Vector2d> matched_to;
     for (const Eigen::Vector2d& wall : walls_from) {
       if (const auto target =
-              nearest.near(estimate.apply(wall), settings.wall_icp_distance_cells)) {
+              nearest->near(estimate.apply(wall), settings.wall_icp_distance_cells)) {
         matched_from.push_back(wall);
         matched_to.push_back(*target);
       }

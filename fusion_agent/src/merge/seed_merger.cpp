@@ -78,6 +78,9 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
       inputs.occupied_to.push_back(cell);
     }
   }
+  if (settings_.wall_icp_iterations > 0) {
+    inputs.nearest_wall_to = std::make_shared<const seed::NearestWall>(inputs.occupied_to);
+  }
   inputs.occupied_to_samples =
       sampleKnownCells(inputs.occupied_to, tables_, settings_.search_occupied_samples, 0);
   for (const CellSample& cell : inputs.coarse_samples) {

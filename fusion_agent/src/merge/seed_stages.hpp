@@ -93,6 +93,21 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<PairCandidate>& pairs,
 std::vector<Hypothesis> bestDistinct(std::vector<Hypothesis> hypotheses, int count);
 
 /// The inputs of block 8 prepared once per merge.
+/// For every cell near a map's walls (within 8 cells of their bounding box), the nearest wall
+/// cell, by a labelled distance transform: the wall ICP's lookup (cell_icp.cpp).
+class NearestWall {
+ public:
+  explicit NearestWall(const std::vector<CellSample>& walls);
+  /// The wall cell nearest to `point` within `max_distance`, if any.
+  std::optional<Eigen::Vector2d> near(const Eigen::Vector2d& point, double max_distance) const;
+
+ private:
+  cv::Point origin_;
+  cv::Mat distance_;
+  cv::Mat labels_;
+  std::vector<cv::Point> wall_of_label_;
+};
+
 struct SearchInputs {
   std::vector<CellSample> coarse_samples;                ///< an even sample of `from`'s known cells
   std::vector<CellSample> fine_samples;                  ///< a denser sample for the ±1 cell steps
@@ -105,8 +120,9 @@ struct SearchInputs {
   CodeImage from;                                 ///< `from` as codes (structure check, reversed)
   cv::Mat wall_balance_to;                        ///< wallBalanceImage(to) (wall anchoring)
   cv::Mat wall_balance_from;                      ///< wallBalanceImage(from) (same, reversed)
-  std::shared_ptr<const WallField> walls_from;    ///< with settle_alignment: `from`'s wall field
-  std::shared_ptr<const WallField> walls_to;      ///< ... and `to`'s
+  std::shared_ptr<const NearestWall> nearest_wall_to;  ///< occupied_to's (wall ICP), built once
+  std::shared_ptr<const WallField> walls_from;  ///< with settle_alignment: `from`'s wall field
+  std::shared_ptr<const WallField> walls_to;    ///< ... and `to`'s
 };
 
 /// Block 8 for one hypothesis: the best shift within ±δ on the coarse samples.
