@@ -14,10 +14,6 @@ inline int floorToInt(double v) {
   return v < truncated ? truncated - 1 : truncated;
 }
 
-bool isWallSample(const CellSample& sample, const ComparisonTables& tables) {
-  return tables.classOf(sample.code) == 2;
-}
-
 // Σ over `centres` of the (2 reach + 1)² window of `values` (CV_8S) around each, window cells
 // outside the image counting 0; in row order of the offset (dy, then dx).
 std::vector<long long> windowSums(const cv::Mat& values, const std::vector<cv::Point>& centres,
@@ -104,7 +100,7 @@ std::vector<long long> wallBalancesAfterShifts(const std::vector<CellSample>& sa
   std::vector<cv::Point> centres;
   centres.reserve(samples.size());
   for (const CellSample& sample : samples) {
-    if (isWallSample(sample, tables)) {
+    if (tables.isOccupied(sample.code)) {
       centres.emplace_back(floorToInt(c * sample.x - s * sample.y + tx) + to.pad,
                            floorToInt(s * sample.x + c * sample.y + ty) + to.pad);
     }
@@ -122,7 +118,7 @@ std::vector<long long> wallBalancesOfInverseShifts(const std::vector<CellSample>
   std::vector<cv::Point> walls;
   cv::Rect bounds;
   for (const CellSample& sample : samples_to) {
-    if (isWallSample(sample, tables)) {
+    if (tables.isOccupied(sample.code)) {
       walls.emplace_back(sample.x, sample.y);
       bounds = walls.size() == 1 ? cv::Rect(walls.back(), cv::Size(1, 1))
                                  : (bounds | cv::Rect(walls.back(), cv::Size(1, 1)));
