@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "mrslam/fusion/merge/approximate_pose.hpp"
+#include "mrslam/fusion/merge/wall_balance.hpp"
 
 namespace mrslam::fusion::seed {
 
@@ -129,47 +130,56 @@ CoarseScorer::CoarseScorer(const PreparedMap& from, const GridMap& to,
   cv::dilate(
       occupiedImage(to, settings.similarity.occupied_threshold), near,
       cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1)));
-  classes_ = cv::Mat(near.size(), CV_8U, cv::Scalar(0));
+  balance_ = cv::Mat(near.size(), CV_8S, cv::Scalar(0));
   for (int y = 0; y < near.rows; ++y) {
     for (int x = 0; x < near.cols; ++x) {
       const std::int8_t value = to.at(x, y);
       if (near.at<std::uint8_t>(y, x) != 0) {
-        classes_.at<std::uint8_t>(y, x) = 2;
+        balance_.at<std::int8_t>(y, x) = 1;
       } else if (value >= 0 && value <= settings.similarity.free_threshold) {
-        classes_.at<std::uint8_t>(y, x) = 1;
+        balance_.at<std::int8_t>(y, x) = -1;
       }
     }
   }
 }
 
 double CoarseScorer::score(const GridTransform& T_to_from) const {
-  if (samples_.empty()) {
-    return 0.0;
-  }
+  return scores(T_to_from, 0, 1).front();
+}
+
+std::vector<double> CoarseScorer::scores(const GridTransform& T_to_from, int reach,
+                                         int step) const {
   const double c = std::cos(T_to_from.theta_rad);
   const double s = std::sin(T_to_from.theta_rad);
-  int balance = 0;
+  std::vector<cv::Point> placed;
+  placed.reserve(samples_.size());
   for (const cv::Point& p : samples_) {
-    const int x = static_cast<int>(std::floor(c * p.x - s * p.y + T_to_from.t_cells.x() + 0.5));
-    const int y = static_cast<int>(std::floor(s * p.x + c * p.y + T_to_from.t_cells.y() + 0.5));
-    if (x < 0 || y < 0 || x >= classes_.cols || y >= classes_.rows) {
-      continue;
-    }
-    const std::uint8_t cell = classes_.at<std::uint8_t>(y, x);
-    balance += cell == 2 ? 1 : (cell == 1 ? -1 : 0);
+    placed.emplace_back(
+        static_cast<int>(std::floor(c * p.x - s * p.y + T_to_from.t_cells.x() + 0.5)),
+        static_cast<int>(std::floor(s * p.x + c * p.y + T_to_from.t_cells.y() + 0.5)));
   }
-  return static_cast<double>(balance) / static_cast<double>(samples_.size());
+  const std::vector<long long> balances = windowSums(balance_, placed, reach, step);
+  const double count = std::max<double>(1.0, static_cast<double>(samples_.size()));
+  std::vector<double> shares;
+  shares.reserve(balances.size());
+  for (const long long balance : balances) {
+    shares.push_back(samples_.empty() ? 0.0 : static_cast<double>(balance) / count);
+  }
+  return shares;
 }
 
 Hypothesis bestShift(const GridTransform& T_to_from, int reach, int step,
                      const CoarseScorer& scorer, Stage stage) {
+  step = std::max(1, step);
+  const int count = 2 * reach / step + 1;
+  const std::vector<double> scores = scorer.scores(T_to_from, reach, step);
   Hypothesis best{T_to_from, -2.0, stage};
-  for (int dy = -reach; dy <= reach; dy += step) {
-    for (int dx = -reach; dx <= reach; dx += step) {
-      GridTransform shifted = T_to_from;
-      shifted.t_cells += Eigen::Vector2d(dx, dy);
-      const double score = scorer.score(shifted);
+  for (int row = 0; row < count; ++row) {
+    for (int column = 0; column < count; ++column) {
+      const double score = scores[static_cast<std::size_t>(row * count + column)];
       if (score > best.coarse_score) {
+        GridTransform shifted = T_to_from;
+        shifted.t_cells += Eigen::Vector2d(-reach + column * step, -reach + row * step);
         best = {shifted, score, stage};
       }
     }

@@ -71,10 +71,13 @@ class CoarseScorer {
  public:
   CoarseScorer(const PreparedMap& from, const GridMap& to, const SeedMergerSettings& settings);
   double score(const GridTransform& T_to_from) const;
+  /// score() at every shift (dx, dy) of T_to_from, dx and dy = -reach, -reach + step, ... up to
+  /// reach, in row order (dy, then dx); the samples are placed once for all shifts.
+  std::vector<double> scores(const GridTransform& T_to_from, int reach, int step) const;
 
  private:
   std::vector<cv::Point> samples_;  // occupied cells of `from`
-  cv::Mat classes_;                 // of `to`: 2 near occupied, 1 free, 0 unknown
+  cv::Mat balance_;                 // CV_8S of `to`: +1 near occupied, -1 free, 0 unknown
 };
 
 /// The best coarse score among the shifts of T_to_from within ±reach cells, every `step` cells

@@ -14,38 +14,6 @@ inline int floorToInt(double v) {
   return v < truncated ? truncated - 1 : truncated;
 }
 
-// Σ over `centres` of the (2 reach + 1)² window of `values` (CV_8S) around each, window cells
-// outside the image counting 0; in row order of the offset (dy, then dx).
-std::vector<long long> windowSums(const cv::Mat& values, const std::vector<cv::Point>& centres,
-                                  int reach) {
-  const int side = 2 * reach + 1;
-  std::vector<std::int32_t> sums(static_cast<std::size_t>(side * side), 0);
-  for (const cv::Point& centre : centres) {
-    const int left = centre.x - reach;
-    const int top = centre.y - reach;
-    if (left >= 0 && top >= 0 && left + side <= values.cols && top + side <= values.rows) {
-      for (int row = 0; row < side; ++row) {  // inside: whole rows, no checks
-        const std::int8_t* cells = values.ptr<std::int8_t>(top + row) + left;
-        std::int32_t* out = sums.data() + row * side;
-        for (int column = 0; column < side; ++column) {
-          out[column] += cells[column];
-        }
-      }
-      continue;
-    }
-    for (int row = 0; row < side; ++row) {  // across the border: cell by cell
-      const int y = top + row;
-      for (int column = 0; y >= 0 && y < values.rows && column < side; ++column) {
-        const int x = left + column;
-        if (x >= 0 && x < values.cols) {
-          sums[static_cast<std::size_t>(row * side + column)] += values.at<std::int8_t>(y, x);
-        }
-      }
-    }
-  }
-  return {sums.begin(), sums.end()};
-}
-
 // The balance of `from` read through T_from_to at the cells origin + (column, row) of `to` for
 // an image of `size`; 0 off `from`'s padded image.
 cv::Mat readThrough(const CodeImage& from, const cv::Mat& balance_from,
@@ -73,6 +41,35 @@ cv::Mat readThrough(const CodeImage& from, const cv::Mat& balance_from,
 }
 
 }  // namespace
+
+std::vector<long long> windowSums(const cv::Mat& values, const std::vector<cv::Point>& centres,
+                                  int reach, int step) {
+  step = std::max(1, step);
+  const int count = 2 * reach / step + 1;  // offsets -reach, -reach + step, ... up to reach
+  const int span = (count - 1) * step + 1;
+  std::vector<std::int32_t> sums(static_cast<std::size_t>(count * count), 0);
+  for (const cv::Point& centre : centres) {
+    const int left = centre.x - reach;
+    const int top = centre.y - reach;
+    const bool inside =
+        left >= 0 && top >= 0 && left + span <= values.cols && top + span <= values.rows;
+    for (int row = 0; row < count; ++row) {
+      const int y = top + row * step;
+      if (!inside && (y < 0 || y >= values.rows)) {
+        continue;
+      }
+      const std::int8_t* cells = values.ptr<std::int8_t>(y);
+      std::int32_t* out = sums.data() + row * count;
+      for (int column = 0; column < count; ++column) {
+        const int x = left + column * step;
+        if (inside || (x >= 0 && x < values.cols)) {
+          out[column] += cells[x];
+        }
+      }
+    }
+  }
+  return {sums.begin(), sums.end()};
+}
 
 cv::Mat wallBalanceImage(const CodeImage& image) {
   cv::Mat balance(image.classes.size(), CV_8S, cv::Scalar(0));
@@ -105,7 +102,7 @@ std::vector<long long> wallBalancesAfterShifts(const std::vector<CellSample>& sa
                            floorToInt(s * sample.x + c * sample.y + ty) + to.pad);
     }
   }
-  return windowSums(balance_to, centres, reach);
+  return windowSums(balance_to, centres, reach, 1);
 }
 
 std::vector<long long> wallBalancesOfInverseShifts(const std::vector<CellSample>& samples_to,
@@ -134,7 +131,7 @@ std::vector<long long> wallBalancesOfInverseShifts(const std::vector<CellSample>
   }
   const cv::Size size(bounds.width + 2 * reach, bounds.height + 2 * reach);
   const cv::Mat read_through = readThrough(from, balance_from, T_to_from.inverse(), origin, size);
-  std::vector<long long> by_offset = windowSums(read_through, walls, reach);
+  std::vector<long long> by_offset = windowSums(read_through, walls, reach, 1);
   std::reverse(by_offset.begin(), by_offset.end());  // offset -d is shift d
   return by_offset;
 }

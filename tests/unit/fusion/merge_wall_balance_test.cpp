@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <utility>
+
 #include "merge_crop_pairs.hpp"
 #include "mrslam/fusion/merge/wall_balance.hpp"
 
@@ -86,6 +89,39 @@ TEST(MergeWallBalanceTest, OneWallCellMeetsTheWallOnlyAtShiftsNearIt) {
   EXPECT_EQ(at(0, 0), -1);  // on free floor two cells away
   EXPECT_EQ(at(3, 0), 0);   // off the map's right edge
   EXPECT_EQ(at(-3, -3), 0);
+}
+
+// Window sums in steps, centres inside, across and beyond the border, against cell-by-cell sums.
+TEST(MergeWallBalanceTest, WindowSumsInStepsEqualCellByCellSums) {
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> value(-1, 1);
+  cv::Mat values(20, 30, CV_8S);
+  for (int y = 0; y < values.rows; ++y) {
+    for (int x = 0; x < values.cols; ++x) {
+      values.at<std::int8_t>(y, x) = static_cast<std::int8_t>(value(random));
+    }
+  }
+  const std::vector<cv::Point> centres = {{15, 10}, {2, 3}, {29, 19}, {-4, 8}, {40, 40}, {10, 18}};
+  for (const auto& [reach, step] : {std::pair{5, 2}, std::pair{3, 1}, std::pair{4, 3}}) {
+    const std::vector<long long> sums = windowSums(values, centres, reach, step);
+    const int count = 2 * reach / step + 1;
+    ASSERT_EQ(sums.size(), static_cast<std::size_t>(count * count));
+    for (int row = 0; row < count; ++row) {
+      for (int column = 0; column < count; ++column) {
+        long long expected = 0;
+        for (const cv::Point& centre : centres) {
+          const int x = centre.x - reach + column * step;
+          const int y = centre.y - reach + row * step;
+          if (x >= 0 && y >= 0 && x < values.cols && y < values.rows) {
+            expected += values.at<std::int8_t>(y, x);
+          }
+        }
+        EXPECT_EQ(sums[static_cast<std::size_t>(row * count + column)], expected)
+            << "reach " << reach << ", step " << step << ", offset " << column << ", " << row;
+      }
+    }
+  }
+  EXPECT_EQ(windowSums(values, {}, 2, 1), std::vector<long long>(25, 0));
 }
 
 TEST(MergeWallBalanceTest, HandBuiltRoomsAtEveryShiftEqualOneCallEach) {

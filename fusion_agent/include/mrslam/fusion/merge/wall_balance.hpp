@@ -13,6 +13,12 @@
 
 namespace mrslam::fusion {
 
+/// Σ over `centres` of `values` (CV_8S) at centre + (dx, dy) for dx, dy = -reach, -reach + step,
+/// ... up to reach, cells off the image counting 0; in row order (dy, then dx). The sums of a
+/// score that adds one cell per sample, at every whole-cell shift of the samples at once.
+std::vector<long long> windowSums(const cv::Mat& values, const std::vector<cv::Point>& centres,
+                                  int reach, int step);
+
 /// CV_8S image of a code image's cells: +1 known and within one cell of a wall, -1 known and
 /// away from walls, 0 unknown (the terms of StructureAgreement's near - far).
 cv::Mat wallBalanceImage(const CodeImage& image);
