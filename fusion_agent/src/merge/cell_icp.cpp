@@ -59,7 +59,8 @@ NearestWall::NearestWall(const std::vector<CellSample>& walls) {
   for (const CellSample& wall : walls) {
     free.at<std::uint8_t>(wall.y - origin_.y, wall.x - origin_.x) = 0;
   }
-  cv::distanceTransform(free, distance_, labels_, cv::DIST_L2, cv::DIST_MASK_5,
+  cv::Mat distance;  // only the labels are looked up
+  cv::distanceTransform(free, distance, labels_, cv::DIST_L2, cv::DIST_MASK_5,
                         cv::DIST_LABEL_PIXEL);
   wall_of_label_.assign(static_cast<std::size_t>(walls.size()) + 1, cv::Point());
   for (int y = 0; y < free.rows; ++y) {

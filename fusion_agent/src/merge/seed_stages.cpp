@@ -163,7 +163,7 @@ std::vector<double> CoarseScorer::scores(const GridTransform& T_to_from, int rea
   std::vector<double> shares;
   shares.reserve(balances.size());
   for (const long long balance : balances) {
-    shares.push_back(samples_.empty() ? 0.0 : static_cast<double>(balance) / count);
+    shares.push_back(static_cast<double>(balance) / count);  // 0 without samples
   }
   return shares;
 }

@@ -95,7 +95,6 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<PairCandidate>& pairs,
 /// The `count` best hypotheses, no two within 3 cells and 2° of each other.
 std::vector<Hypothesis> bestDistinct(std::vector<Hypothesis> hypotheses, int count);
 
-/// The inputs of block 8 prepared once per merge.
 /// For every cell near a map's walls (within 8 cells of their bounding box), the nearest wall
 /// cell, by a labelled distance transform: the wall ICP's lookup (cell_icp.cpp).
 class NearestWall {
@@ -106,11 +105,11 @@ class NearestWall {
 
  private:
   cv::Point origin_;
-  cv::Mat distance_;
   cv::Mat labels_;
   std::vector<cv::Point> wall_of_label_;
 };
 
+/// The inputs of block 8 prepared once per merge.
 struct SearchInputs {
   std::vector<CellSample> coarse_samples;                ///< an even sample of `from`'s known cells
   std::vector<CellSample> fine_samples;                  ///< a denser sample for the ±1 cell steps

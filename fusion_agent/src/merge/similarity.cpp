@@ -26,12 +26,6 @@ struct PlacedSample {
   std::uint8_t class_row;  // 3 · class: the row of the packed agreement table
 };
 
-// static_cast<int>(std::floor(v)) for |v| < 2^31, without the call.
-inline int floorToInt(double v) {
-  const int truncated = static_cast<int>(v);
-  return v < truncated ? truncated - 1 : truncated;
-}
-
 // Places every sample that stays inside the padded image for all shifts within ±reach.
 std::vector<PlacedSample> place(const std::vector<CellSample>& samples, const CodeImage& to,
                                 const GridTransform& T_to_from, int reach,

@@ -15,12 +15,6 @@ constexpr double kLeastField = 0.01;  // f below this counts as 0 (d beyond 3σ)
 using Level = WallField::Level;
 using Cells = std::vector<Eigen::Vector2d>;
 
-// static_cast<int>(std::floor(v)) for |v| < 2^31, without a call into libm.
-inline int floorToInt(double v) {
-  const int truncated = static_cast<int>(v);
-  return v < truncated ? truncated - 1 : truncated;
-}
-
 // The walls and the known cells of a map by the classes of block 8 (occupied at least
 // occupied_threshold, free at most free_threshold, unknown between).
 Cells classify(const GridMap& map, const SimilaritySettings& classes, cv::Mat& known) {

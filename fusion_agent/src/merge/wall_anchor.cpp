@@ -5,11 +5,10 @@
 // discrete searches of agr - dis and the wall ICP then settle the last cell and degree.
 
 #include <algorithm>
+#include <cstdlib>
 #include <optional>
 #include <utility>
 #include <vector>
-
-#include <cstdlib>
 
 #include "mrslam/fusion/merge/wall_balance.hpp"
 #include "seed_stages.hpp"
@@ -52,7 +51,11 @@ std::optional<long long> runnerUp(const std::vector<ShiftBalance>& balances,
 
 long long wallBalance(const GridTransform& T_to_from, const SearchInputs& inputs,
                       const ComparisonTables& tables) {
-  return shiftedBalances(T_to_from, 0, inputs, tables).front();
+  const StructureAgreement onto_to =
+      structureAgreement(inputs.occupied_from_samples, inputs.to, T_to_from, tables);
+  const StructureAgreement onto_from =
+      structureAgreement(inputs.occupied_to_samples, inputs.from, T_to_from.inverse(), tables);
+  return onto_to.near - onto_to.far + onto_from.near - onto_from.far;
 }
 WallSearch anchorOnWalls(const GridTransform& T_to_from, int reach, const SearchInputs& inputs,
                          const ComparisonTables& tables) {

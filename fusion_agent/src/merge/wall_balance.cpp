@@ -8,12 +8,6 @@ namespace mrslam::fusion {
 
 namespace {
 
-// static_cast<int>(std::floor(v)) for |v| < 2^31, as place() rounds.
-inline int floorToInt(double v) {
-  const int truncated = static_cast<int>(v);
-  return v < truncated ? truncated - 1 : truncated;
-}
-
 // The balance of `from` read through T_from_to at the cells origin + (column, row) of `to` for
 // an image of `size`; 0 off `from`'s padded image.
 cv::Mat readThrough(const CodeImage& from, const cv::Mat& balance_from,

@@ -73,6 +73,13 @@ struct CellSample {
   std::uint8_t code = kUnknownCode;
 };
 
+/// static_cast<int>(std::floor(v)) for |v| < 2^31, without a call into libm: the cell a
+/// coordinate falls in, as every placement of samples rounds.
+inline int floorToInt(double v) {
+  const int truncated = static_cast<int>(v);
+  return v < truncated ? truncated - 1 : truncated;
+}
+
 /// Every known cell of a map (known: of class free or occupied).
 std::vector<CellSample> knownCells(const GridMap& map, const ComparisonTables& tables);
 
