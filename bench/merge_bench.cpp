@@ -10,12 +10,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "../tests/unit/fusion/merge_test_maps.hpp"
+#include "mrslam/common/heap.hpp"
 #include "mrslam/fusion/merge/feature_merger.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
 #include "mrslam/fusion/merge/merger_registry.hpp"
@@ -232,4 +235,28 @@ BENCHMARK_CAPTURE(BM_SeedMerge400, freiburg_aces, "freiburg-aces.pgm")
 }  // namespace
 }  // namespace mrslam::fusion
 
-BENCHMARK_MAIN();
+// As in the fusion agent and the merge tools, freed memory is kept for the next merge; with
+// --default_heap the C library's own settings are measured instead.
+int main(int argc, char** argv) {
+  bool default_heap = false;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--default_heap") {
+      default_heap = true;
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  if (!default_heap && !mrslam::retainHeapForReuse()) {
+    std::fprintf(stderr, "merge_bench: the C library keeps its own heap settings\n");
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
+    return 1;
+  }
+  benchmark::AddCustomContext("heap", default_heap ? "default" : "retained for reuse");
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

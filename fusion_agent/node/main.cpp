@@ -9,6 +9,7 @@
 
 #include "fusion_loop.hpp"
 #include "mrslam/common/dds_settings.hpp"
+#include "mrslam/common/heap.hpp"
 #include "mrslam/common/shutdown.hpp"
 #include "mrslam/common/version.hpp"
 
@@ -43,6 +44,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", mrslam::versionLine("fusion_agent"));
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(log_level));
+  if (!mrslam::retainHeapForReuse()) {  // every merge reuses the last one's memory
+    spdlog::debug("fusion_agent: the C library keeps its own heap settings");
+  }
   try {
     mrslam::fusion::FusionConfig config = mrslam::fusion::loadFusionConfig(config_path);
     if (domain >= 0) {

@@ -24,6 +24,7 @@
 #include <optional>
 #include <queue>
 
+#include "mrslam/common/heap.hpp"
 #include "mrslam/common/map_loaders.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
@@ -295,5 +296,6 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.set_version_flag("--version", mrslam::versionLine("merge"));
   CLI11_PARSE(app, argc, argv);
+  mrslam::retainHeapForReuse();  // each merge reuses the last one's memory
   return run(options);
 }

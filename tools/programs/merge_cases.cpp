@@ -25,6 +25,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "mrslam/common/heap.hpp"
 #include "mrslam/common/map_io.hpp"
 #include "mrslam/common/map_loaders.hpp"
 #include "mrslam/common/version.hpp"
@@ -404,5 +405,6 @@ int main(int argc, char** argv) {
                  "folder: write each run case's crops and crop B with A's walls at the truth");
   app.set_version_flag("--version", mrslam::versionLine("merge_cases"));
   CLI11_PARSE(app, argc, argv);
+  mrslam::retainHeapForReuse();  // each merge reuses the last one's memory
   return run(options);
 }
