@@ -13,6 +13,13 @@ namespace {
 
 constexpr int kMargin = 8;  // cells around `to`'s walls where nearest walls are looked up
 
+// std::lround's result (halves away from zero) without its call: v's fractional part is exact.
+int roundToInt(double v) {
+  const int truncated = static_cast<int>(v);
+  const double fraction = v - truncated;
+  return fraction >= 0.5 ? truncated + 1 : (fraction <= -0.5 ? truncated - 1 : truncated);
+}
+
 // The rigid transform (rotation, translation) that best maps `from` onto `to` (least squares).
 GridTransform fitRigid(const std::vector<Eigen::Vector2d>& from,
                        const std::vector<Eigen::Vector2d>& to) {
@@ -77,12 +84,12 @@ NearestWall::NearestWall(const std::vector<CellSample>& walls) {
 
 std::optional<Eigen::Vector2d> NearestWall::near(const Eigen::Vector2d& point,
                                                  double max_distance) const {
-  const int x = static_cast<int>(std::lround(point.x())) - origin_.x;
-  const int y = static_cast<int>(std::lround(point.y())) - origin_.y;
+  const int x = roundToInt(point.x()) - origin_.x;
+  const int y = roundToInt(point.y()) - origin_.y;
   if (labels_.empty() || x < 0 || y < 0 || x >= labels_.cols || y >= labels_.rows) {
     return std::nullopt;
   }
-  const int label = labels_.at<int>(y, x);
+  const int label = labels_.ptr<int>(y)[x];
   if (label < 0 || static_cast<std::size_t>(label) >= wall_of_label_.size()) {
     return std::nullopt;
   }
@@ -109,9 +116,11 @@ GridTransform refineOnWalls(const GridTransform& T_to_from, const SearchInputs& 
   for (int iteration = 0; iteration < settings.wall_icp_iterations; ++iteration) {
     std::vector<Eigen::Vector2d> matched_from;
     std::vector<Eigen::Vector2d> matched_to;
+    matched_from.reserve(walls_from.size());
+    matched_to.reserve(walls_from.size());
+    const CellMapping to_of(estimate);
     for (const Eigen::Vector2d& wall : walls_from) {
-      if (const auto target =
-              nearest->near(estimate.apply(wall), settings.wall_icp_distance_cells)) {
+      if (const auto target = nearest->near(to_of(wall), settings.wall_icp_distance_cells)) {
         matched_from.push_back(wall);
         matched_to.push_back(*target);
       }

@@ -64,6 +64,8 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
   }
   inputs.pivot_from /= std::max<double>(1.0, static_cast<double>(inputs.all_samples.size()));
   inputs.to = codeImage(to, settings_.translation_window_delta + 2, tables_);
+  inputs.entropy_from = mapEntropy(from, tables_);
+  inputs.entropy_to = mapEntropy(to, tables_);
   if (settings_.wall_anchor && settings_.settle_alignment) {
     inputs.walls_from =
         std::make_shared<WallField>(from, settings_.similarity, settings_.wall_alignment);
@@ -180,11 +182,12 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
       refined = *next;
     }
   }
-  judge(refined, from, to, result);  // block 9
+  judge(refined, inputs, result);  // block 9
   lap(clock, timings_.verification);
   if (inputs.walls_from && inputs.walls_to) {  // block 8's fields, when it settled on them
-    alignAccepted(from, to, *inputs.walls_from, *inputs.walls_to, settings_.wall_alignment,
-                  settings_.similarity, result);
+    alignAccepted({*inputs.walls_from, *inputs.walls_to, tables_, inputs.all_samples, inputs.to,
+                   inputs.entropy_from, inputs.entropy_to},
+                  settings_.wall_alignment, result);
   } else {
     alignAccepted(from, to, settings_.wall_alignment, settings_.similarity, result);
   }
@@ -218,7 +221,7 @@ MergeResult SeedMerger::judgeHypotheses(const GridMap& from, const GridMap& to,
       refined = *next;
     }
   }
-  judge(refined, from, to, result);
+  judge(refined, inputs, result);
   return result;
 }
 
@@ -330,12 +333,12 @@ seed::Refined SeedMerger::refineBest(const std::vector<seed::Candidate>& candida
   return refined;
 }
 
-void SeedMerger::judge(const seed::Refined& refined, const GridMap& from, const GridMap& to,
+void SeedMerger::judge(const seed::Refined& refined, const seed::SearchInputs& inputs,
                        MergeResult& result) const {
   result.T_to_from = refined.T_to_from;
   result.method = seed::stageName(refined.stage);
   result.verification = verificationIndex(refined.full);
-  result.entropy = mergedEntropy(mapEntropy(from, tables_), mapEntropy(to, tables_), refined.full);
+  result.entropy = mergedEntropy(inputs.entropy_from, inputs.entropy_to, refined.full);
   result.reason = refusal(refined);
   result.accepted = result.reason.empty();
 }

@@ -116,6 +116,8 @@ struct SearchInputs {
   std::vector<CellSample> all_samples;                   ///< every known cell of `from`
   Eigen::Vector2d pivot_from = Eigen::Vector2d::Zero();  ///< centre of `from`'s known cells
   CodeImage to;
+  double entropy_from = 0.0;            ///< mapEntropy of `from` (block 9)
+  double entropy_to = 0.0;              ///< mapEntropy of `to`
   std::vector<CellSample> occupied_to;  ///< occupied cells of `to` (structure check, reversed)
   std::vector<CellSample> occupied_to_samples;    ///< an even sample of them (wall balance)
   std::vector<CellSample> occupied_from_samples;  ///< occupied cells of coarse_samples (same)

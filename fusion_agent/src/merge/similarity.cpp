@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 namespace mrslam::fusion {
@@ -26,22 +27,50 @@ struct PlacedSample {
   std::uint8_t class_row;  // 3 · class: the row of the packed agreement table
 };
 
+// A sample's cell in `to` under T_to_from: floor(T p + 0.5) in each coordinate. The samples come
+// row by row, so the products of a row's y are taken once for the row.
+class CellPlacer {
+ public:
+  explicit CellPlacer(const GridTransform& T_to_from)
+      : c_(std::cos(T_to_from.theta_rad)),
+        s_(std::sin(T_to_from.theta_rad)),
+        tx_(T_to_from.t_cells.x() + 0.5),
+        ty_(T_to_from.t_cells.y() + 0.5) {}
+
+  void place(const CellSample& sample, int& x, int& y) {
+    if (sample.y != row_) {
+      row_ = sample.y;
+      s_row_ = s_ * row_;
+      c_row_ = c_ * row_;
+    }
+    x = floorToInt(c_ * sample.x - s_row_ + tx_);
+    y = floorToInt(s_ * sample.x + c_row_ + ty_);
+  }
+
+ private:
+  double c_;
+  double s_;
+  double tx_;
+  double ty_;
+  int row_ = std::numeric_limits<int>::min();
+  double s_row_ = 0.0;
+  double c_row_ = 0.0;
+};
+
 // Places every sample that stays inside the padded image for all shifts within ±reach.
 std::vector<PlacedSample> place(const std::vector<CellSample>& samples, const CodeImage& to,
                                 const GridTransform& T_to_from, int reach,
                                 const ComparisonTables& tables) {
   std::vector<PlacedSample> placed;
   placed.reserve(samples.size());
-  const double c = std::cos(T_to_from.theta_rad);
-  const double s = std::sin(T_to_from.theta_rad);
-  const double tx = T_to_from.t_cells.x() + 0.5;
-  const double ty = T_to_from.t_cells.y() + 0.5;
+  CellPlacer placer(T_to_from);
   const int low = reach - to.pad;
   const int high_x = to.codes.cols - to.pad - 1 - reach;
   const int high_y = to.codes.rows - to.pad - 1 - reach;
   for (const CellSample& sample : samples) {
-    const int x = floorToInt(c * sample.x - s * sample.y + tx);
-    const int y = floorToInt(s * sample.x + c * sample.y + ty);
+    int x = 0;
+    int y = 0;
+    placer.place(sample, x, y);
     if (x < low || y < low || x > high_x || y > high_y) {
       continue;
     }
@@ -188,8 +217,34 @@ double verificationIndex(const Agreement& agreement) {
 Agreement compareAt(const std::vector<CellSample>& samples, const CodeImage& to,
                     const GridTransform& T_to_from, const ComparisonTables& tables,
                     bool with_entropy) {
-  const std::vector<PlacedSample> placed = place(samples, to, T_to_from, 0, tables);
-  return with_entropy ? compareShifted(placed, to, 0, tables) : countShifted(placed, to, 0, tables);
+  // place() and compareShifted() at no shift in one pass, without storing the placed samples.
+  CellPlacer placer(T_to_from);
+  const int low = -to.pad;
+  const int high_x = to.codes.cols - to.pad - 1;
+  const int high_y = to.codes.rows - to.pad - 1;
+  const std::uint8_t* classes = to.classes.ptr<std::uint8_t>(0);
+  const std::uint8_t* codes = to.codes.ptr<std::uint8_t>(0);
+  std::uint64_t packed = 0;
+  double entropy_change = 0.0;
+  for (const CellSample& sample : samples) {
+    int x = 0;
+    int y = 0;
+    placer.place(sample, x, y);
+    if (x < low || y < low || x > high_x || y > high_y) {
+      continue;
+    }
+    const std::ptrdiff_t index =
+        static_cast<std::ptrdiff_t>(y + to.pad) * to.codes.cols + x + to.pad;
+    packed += tables.packedAgreement(3 * tables.classOf(sample.code) + classes[index]);
+    if (with_entropy) {
+      entropy_change += tables.entropyChange(sample.code, codes[index]);
+    }
+  }
+  Agreement sums;
+  sums.agreement = static_cast<long long>(packed & 0xffffffffu);
+  sums.disagreement = static_cast<long long>(packed >> 32);
+  sums.entropy_change = with_entropy ? entropy_change : sums.entropy_change;
+  return sums;
 }
 
 TranslationSearch searchTranslation(const std::vector<CellSample>& samples, const CodeImage& to,

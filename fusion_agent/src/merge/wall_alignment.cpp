@@ -55,9 +55,22 @@ cv::Mat likelihoodField(const cv::Mat& known, const Cells& walls, double sigma_c
     }
   }
   cv::Mat field(known.size(), CV_32F, cv::Scalar(0.0f));
+  const std::ptrdiff_t stride = known.cols;  // both images are continuous
   for (const Eigen::Vector2d& wall : walls) {
     const int x = static_cast<int>(wall.x());
     const int y = static_cast<int>(wall.y());
+    if (x >= reach && y >= reach && x + reach < known.cols && y + reach < known.rows) {
+      // Inside by `reach`: every cell of the kernel is on the map.
+      const std::uint8_t* known_at = known.ptr<std::uint8_t>(y) + x;
+      float* field_at = field.ptr<float>(y) + x;
+      for (const Weight& weight : kernel) {
+        const std::ptrdiff_t offset = weight.dy * stride + weight.dx;
+        if (known_at[offset] != 0) {
+          field_at[offset] = std::max(field_at[offset], weight.f);
+        }
+      }
+      continue;
+    }
     for (const Weight& weight : kernel) {
       const int u = x + weight.dx;
       const int v = y + weight.dy;
@@ -89,8 +102,9 @@ Eigen::Vector2d overlapPivot(const WallField& from, const WallField& to,
                              const GridTransform& T_to_from) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   int count = 0;
+  const CellMapping to_of(T_to_from);
   for (const Eigen::Vector2d& wall : from.walls()) {
-    if (to.isKnown(T_to_from.apply(wall))) {
+    if (to.isKnown(to_of(wall))) {
       sum += wall;
       ++count;
     }
@@ -111,9 +125,10 @@ Cells reachableWalls(const WallField& own, const WallField& other, const GridTra
                      const Eigen::Vector2d& pivot_own, const WallAlignmentSettings& settings) {
   const double max_turn = settings.max_turn_deg * kDegToRad;
   Cells reachable;
+  const CellMapping other_of(T_other_own);
   for (const Eigen::Vector2d& wall : own.walls()) {
     const double margin = settings.max_shift_cells + (wall - pivot_own).norm() * max_turn + 1.0;
-    if (other.knownWithin(T_other_own.apply(wall), margin)) {
+    if (other.knownWithin(other_of(wall), margin)) {
       reachable.push_back(wall);
     }
   }
@@ -153,16 +168,12 @@ class OffsetScorer {
 
   /// W of `level` at every shift of `shifts` for one turn (the walls turned once).
   std::vector<double> scores(double turn, const Cells& shifts, Level level) const {
-    const GridTransform at_zero = transform({turn, Eigen::Vector2d::Zero()});
-    const Cells moved_from = moved(from_walls_[index(level)], at_zero);
-    const Cells moved_to = moved(to_walls_[index(level)], at_zero.inverse());
-    GridTransform unturn;
-    unturn.theta_rad = -at_zero.theta_rad;
+    const Turned& turned = turnedWalls(turn, level);
     std::vector<double> result;
     result.reserve(shifts.size());
     for (const Eigen::Vector2d& shift : shifts) {
-      result.push_back(sum(moved_from, shift, to_, level) +
-                       sum(moved_to, -unturn.apply(shift), from_, level));
+      result.push_back(sum(turned.from, shift, to_, level) +
+                       sum(turned.to, -turned.unturn.apply(shift), from_, level));
     }
     return result;
   }
@@ -175,8 +186,9 @@ class OffsetScorer {
   static Cells moved(const Cells& cells, const GridTransform& T) {
     Cells result;
     result.reserve(cells.size());
+    const CellMapping mapped(T);
     for (const Eigen::Vector2d& cell : cells) {
-      result.push_back(T.apply(cell));
+      result.push_back(mapped(cell));
     }
     return result;
   }
@@ -189,8 +201,33 @@ class OffsetScorer {
     return total;
   }
 
+  // The walls of both maps at one turn and no shift; the last turn's are kept, as the pattern
+  // search shifts more often than it turns.
+  struct Turned {
+    double turn = 0.0;
+    Level level = Level::kCoarse;
+    bool valid = false;
+    Cells from;  // from_'s walls in to_'s cells
+    Cells to;    // to_'s walls in from_'s cells
+    GridTransform unturn;
+  };
+  const Turned& turnedWalls(double turn, Level level) const {
+    if (!last_.valid || last_.turn != turn || last_.level != level) {
+      const GridTransform at_zero = transform({turn, Eigen::Vector2d::Zero()});
+      last_.turn = turn;
+      last_.level = level;
+      last_.valid = true;
+      last_.from = moved(from_walls_[index(level)], at_zero);
+      last_.to = moved(to_walls_[index(level)], at_zero.inverse());
+      last_.unturn = GridTransform();
+      last_.unturn.theta_rad = -at_zero.theta_rad;
+    }
+    return last_;
+  }
+
   const WallField& from_;
   const WallField& to_;
+  mutable Turned last_;
   GridTransform T_;
   Eigen::Vector2d pivot_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d landed_ = Eigen::Vector2d::Zero();
@@ -295,7 +332,10 @@ double WallField::fieldAt(const Eigen::Vector2d& cell, Level level) const {
 }
 
 bool WallField::isKnown(const Eigen::Vector2d& cell) const {
-  return knownWithin(cell, 0.0);
+  const int x = floorToInt(cell.x() + 0.5);
+  const int y = floorToInt(cell.y() + 0.5);
+  return x >= 0 && y >= 0 && x < known_.cols && y < known_.rows &&
+         known_.ptr<std::uint8_t>(y)[x] != 0;
 }
 
 bool WallField::knownWithin(const Eigen::Vector2d& cell, double cells) const {
@@ -310,23 +350,46 @@ bool WallField::knownWithin(const Eigen::Vector2d& cell, double cells) const {
 WallAgreement wallAgreement(const WallField& from, const WallField& to,
                             const GridTransform& T_to_from) {
   WallAgreement agreement;
-  const GridTransform T_from_to = T_to_from.inverse();
+  const CellMapping to_of(T_to_from);
+  const CellMapping from_of(T_to_from.inverse());
   for (const Eigen::Vector2d& wall : from.walls()) {
-    const Eigen::Vector2d landed = T_to_from.apply(wall);
+    const Eigen::Vector2d landed = to_of(wall);
     agreement.score += to.fieldAt(landed, Level::kFine);
     agreement.counted += to.isKnown(landed) ? 1 : 0;
   }
   for (const Eigen::Vector2d& wall : to.walls()) {
-    const Eigen::Vector2d landed = T_from_to.apply(wall);
+    const Eigen::Vector2d landed = from_of(wall);
     agreement.score += from.fieldAt(landed, Level::kFine);
     agreement.counted += from.isKnown(landed) ? 1 : 0;
   }
   return agreement;
 }
 
+namespace {
+
+// Whether at least `least` walls of either map land on the other's known cells (the count of
+// wallAgreement, stopped once it is reached).
+bool landsEnoughWalls(const WallField& from, const WallField& to, const GridTransform& T_to_from,
+                      int least) {
+  int counted = 0;
+  const auto count = [&](const WallField& own, const WallField& other, const GridTransform& T) {
+    const CellMapping other_of(T);
+    for (const Eigen::Vector2d& wall : own.walls()) {
+      counted += other.isKnown(other_of(wall)) ? 1 : 0;
+      if (counted >= least) {
+        return true;
+      }
+    }
+    return false;
+  };
+  return least <= 0 || count(from, to, T_to_from) || count(to, from, T_to_from.inverse());
+}
+
+}  // namespace
+
 GridTransform alignWalls(const WallField& from, const WallField& to, const GridTransform& T_to_from,
                          const WallAlignmentSettings& settings) {
-  if (wallAgreement(from, to, T_to_from).counted < settings.min_walls) {
+  if (!landsEnoughWalls(from, to, T_to_from, settings.min_walls)) {
     return T_to_from;
   }
   const OffsetScorer scorer(from, to, T_to_from, settings);
@@ -385,30 +448,32 @@ void alignAccepted(const GridMap& from, const GridMap& to, const WallAlignmentSe
   if (!settings.enabled || !result.accepted) {
     return;
   }
-  alignAccepted(from, to, WallField(from, classes, settings), WallField(to, classes, settings),
-                settings, classes, result);
+  const ComparisonTables tables(classes);
+  const std::vector<CellSample> known_from = knownCells(from, tables);
+  const CodeImage codes_to = codeImage(to, 1, tables);
+  alignAccepted({WallField(from, classes, settings), WallField(to, classes, settings), tables,
+                 known_from, codes_to, mapEntropy(from, tables), mapEntropy(to, tables)},
+                settings, result);
 }
 
-void alignAccepted(const GridMap& from, const GridMap& to, const WallField& field_from,
-                   const WallField& field_to, const WallAlignmentSettings& settings,
-                   const SimilaritySettings& classes, MergeResult& result) {
+void alignAccepted(const AlignmentMaps& maps, const WallAlignmentSettings& settings,
+                   MergeResult& result) {
   if (!settings.enabled || !result.accepted) {
     return;
   }
-  const GridTransform aligned = alignWalls(field_from, field_to, result.T_to_from, settings);
-  const ComparisonTables tables(classes);
-  const std::vector<CellSample> cells_from = knownCells(from, tables);
-  const CodeImage codes_to = codeImage(to, 1, tables);
-  const Agreement at_found = compareAt(cells_from, codes_to, result.T_to_from, tables);
-  const Agreement at_aligned = compareAt(cells_from, codes_to, aligned, tables);
+  const GridTransform aligned =
+      alignWalls(maps.field_from, maps.field_to, result.T_to_from, settings);
+  const Agreement at_found =
+      compareAt(maps.known_from, maps.codes_to, result.T_to_from, maps.tables);
+  const Agreement at_aligned = compareAt(maps.known_from, maps.codes_to, aligned, maps.tables);
   // The walls may pull a little off where the cells of the two maps agree best (crops resampled
   // differently, a wall doubled by pose error): the alignment never lowers V.
   const bool keep = verificationIndex(at_aligned) >= verificationIndex(at_found);
   const Agreement& full = keep ? at_aligned : at_found;
   result.T_to_from = keep ? aligned : result.T_to_from;
   result.verification = verificationIndex(full);
-  result.entropy = mergedEntropy(mapEntropy(from, tables), mapEntropy(to, tables), full);
-  refuseUnlessTurnFixed(field_from, field_to, settings, result);
+  result.entropy = mergedEntropy(maps.entropy_from, maps.entropy_to, full);
+  refuseUnlessTurnFixed(maps.field_from, maps.field_to, settings, result);
 }
 
 }  // namespace mrslam::fusion

@@ -3,26 +3,32 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <opencv2/imgproc.hpp>
 
 namespace mrslam::fusion {
 
 namespace {
 
 // The balance of `from` read through T_from_to at the cells origin + (column, row) of `to` for
-// an image of `size`; 0 off `from`'s padded image.
+// an image of `size`, where `needed` is non-zero; 0 elsewhere and off `from`'s padded image.
 cv::Mat readThrough(const CodeImage& from, const cv::Mat& balance_from,
-                    const GridTransform& T_from_to, const cv::Point& origin, const cv::Size& size) {
-  cv::Mat read_through(size, CV_8S, cv::Scalar(0));
+                    const GridTransform& T_from_to, const cv::Point& origin,
+                    const cv::Mat& needed) {
+  cv::Mat read_through(needed.size(), CV_8S, cv::Scalar(0));
   const double c = std::cos(T_from_to.theta_rad);
   const double s = std::sin(T_from_to.theta_rad);
   const double tx = T_from_to.t_cells.x() + 0.5;
   const double ty = T_from_to.t_cells.y() + 0.5;
   const int high_x = from.codes.cols - from.pad - 1;
   const int high_y = from.codes.rows - from.pad - 1;
-  for (int row = 0; row < size.height; ++row) {
+  for (int row = 0; row < needed.rows; ++row) {
+    const std::uint8_t* wanted = needed.ptr<std::uint8_t>(row);
     std::int8_t* out = read_through.ptr<std::int8_t>(row);
     const int qy = origin.y + row;
-    for (int column = 0; column < size.width; ++column) {
+    for (int column = 0; column < needed.cols; ++column) {
+      if (wanted[column] == 0) {
+        continue;
+      }
       const int qx = origin.x + column;
       const int x = floorToInt(c * qx - s * qy + tx);
       const int y = floorToInt(s * qx + c * qy + ty);
@@ -36,9 +42,65 @@ cv::Mat readThrough(const CodeImage& from, const cv::Mat& balance_from,
 
 }  // namespace
 
+namespace {
+
+constexpr int kLanes = 16;  // columns summed at once by windowSumsOfNarrowWindows
+
+// windowSums for step 1 and windows at most kLanes wide: a centre whose kLanes columns from the
+// window's left lie on the image adds them all at once (a fixed count the compiler turns into
+// vector adds; the columns past the window are summed and dropped), the others cell by cell.
+std::vector<long long> windowSumsOfNarrowWindows(const cv::Mat& values,
+                                                 const std::vector<cv::Point>& centres, int reach) {
+  const int count = 2 * reach + 1;
+  std::vector<std::int32_t> wide(static_cast<std::size_t>(count * kLanes), 0);
+  std::vector<std::int32_t> sums(static_cast<std::size_t>(count * count), 0);
+  for (const cv::Point& centre : centres) {
+    const int left = centre.x - reach;
+    const int top = centre.y - reach;
+    if (left >= 0 && top >= 0 && left + kLanes <= values.cols && top + count <= values.rows) {
+      for (int row = 0; row < count; ++row) {
+        const std::int8_t* cells = values.ptr<std::int8_t>(top + row) + left;
+        std::int32_t* out = wide.data() + row * kLanes;
+        for (int lane = 0; lane < kLanes; ++lane) {
+          out[lane] += cells[lane];
+        }
+      }
+      continue;
+    }
+    for (int row = 0; row < count; ++row) {
+      const int y = top + row;
+      if (y < 0 || y >= values.rows) {
+        continue;
+      }
+      const std::int8_t* cells = values.ptr<std::int8_t>(y);
+      std::int32_t* out = sums.data() + row * count;
+      for (int column = 0; column < count; ++column) {
+        const int x = left + column;
+        if (x >= 0 && x < values.cols) {
+          out[column] += cells[x];
+        }
+      }
+    }
+  }
+  std::vector<long long> result(sums.size());
+  for (int row = 0; row < count; ++row) {
+    for (int column = 0; column < count; ++column) {
+      const std::size_t k = static_cast<std::size_t>(row * count + column);
+      result[k] =
+          static_cast<long long>(sums[k]) + wide[static_cast<std::size_t>(row * kLanes + column)];
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
 std::vector<long long> windowSums(const cv::Mat& values, const std::vector<cv::Point>& centres,
                                   int reach, int step) {
   step = std::max(1, step);
+  if (step == 1 && 2 * reach + 1 <= kLanes) {
+    return windowSumsOfNarrowWindows(values, centres, reach);
+  }
   const int count = 2 * reach / step + 1;  // offsets -reach, -reach + step, ... up to reach
   const int span = (count - 1) * step + 1;
   std::vector<std::int32_t> sums(static_cast<std::size_t>(count * count), 0);
@@ -123,8 +185,13 @@ std::vector<long long> wallBalancesOfInverseShifts(const std::vector<CellSample>
   for (cv::Point& wall : walls) {
     wall -= origin;
   }
-  const cv::Size size(bounds.width + 2 * reach, bounds.height + 2 * reach);
-  const cv::Mat read_through = readThrough(from, balance_from, T_to_from.inverse(), origin, size);
+  // Only the cells within ±reach of a wall are summed: those are read.
+  cv::Mat needed(bounds.height + 2 * reach, bounds.width + 2 * reach, CV_8U, cv::Scalar(0));
+  for (const cv::Point& wall : walls) {
+    needed.at<std::uint8_t>(wall) = 1;
+  }
+  cv::dilate(needed, needed, cv::Mat::ones(side, side, CV_8U));
+  const cv::Mat read_through = readThrough(from, balance_from, T_to_from.inverse(), origin, needed);
   std::vector<long long> by_offset = windowSums(read_through, walls, reach, 1);
   std::reverse(by_offset.begin(), by_offset.end());  // offset -d is shift d
   return by_offset;

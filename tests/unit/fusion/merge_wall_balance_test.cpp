@@ -101,8 +101,12 @@ TEST(MergeWallBalanceTest, WindowSumsInStepsEqualCellByCellSums) {
       values.at<std::int8_t>(y, x) = static_cast<std::int8_t>(value(random));
     }
   }
-  const std::vector<cv::Point> centres = {{15, 10}, {2, 3}, {29, 19}, {-4, 8}, {40, 40}, {10, 18}};
-  for (const auto& [reach, step] : {std::pair{5, 2}, std::pair{3, 1}, std::pair{4, 3}}) {
+  // {20, 10} and {22, 10} with reach 6: 16 columns from the window's left fit on the image for
+  // the first and not for the second (the 16-column sums of steps of 1 and the cell-by-cell ones).
+  const std::vector<cv::Point> centres = {{15, 10}, {2, 3},   {29, 19}, {-4, 8},
+                                          {40, 40}, {10, 18}, {20, 10}, {22, 10}};
+  for (const auto& [reach, step] : {std::pair{5, 2}, std::pair{3, 1}, std::pair{4, 3},
+                                    std::pair{6, 1}, std::pair{7, 1}, std::pair{8, 1}}) {
     const std::vector<long long> sums = windowSums(values, centres, reach, step);
     const int count = 2 * reach / step + 1;
     ASSERT_EQ(sums.size(), static_cast<std::size_t>(count * count));

@@ -240,7 +240,7 @@ class SeedMerger : public MapMerger {
   seed::Refined refineBest(const std::vector<seed::Candidate>& candidates,
                            const seed::SearchInputs& inputs) const;
   /// Block 9: the result of a refined transform.
-  void judge(const seed::Refined& refined, const GridMap& from, const GridMap& to,
+  void judge(const seed::Refined& refined, const seed::SearchInputs& inputs,
              MergeResult& result) const;
   /// Why a refined transform is refused; empty when it is accepted.
   std::string refusal(const seed::Refined& refined) const;

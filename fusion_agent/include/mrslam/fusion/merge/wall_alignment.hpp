@@ -109,9 +109,18 @@ double wallTurnShare(const WallField& from, const WallField& to, const GridTrans
 /// left as it is.
 void alignAccepted(const GridMap& from, const GridMap& to, const WallAlignmentSettings& settings,
                    const SimilaritySettings& classes, MergeResult& result);
-/// The same with the two maps' fields prepared already (with these settings and classes).
-void alignAccepted(const GridMap& from, const GridMap& to, const WallField& field_from,
-                   const WallField& field_to, const WallAlignmentSettings& settings,
-                   const SimilaritySettings& classes, MergeResult& result);
+/// What alignAccepted() reads of the two maps, prepared by a merger that has it already.
+struct AlignmentMaps {
+  const WallField& field_from;                ///< with the settings and classes of the merge
+  const WallField& field_to;                  ///< the same
+  const ComparisonTables& tables;             ///< the classes' comparison tables
+  const std::vector<CellSample>& known_from;  ///< knownCells(from, tables)
+  const CodeImage& codes_to;                  ///< codeImage(to, any pad, tables)
+  double entropy_from = 0.0;                  ///< mapEntropy(from, tables)
+  double entropy_to = 0.0;                    ///< mapEntropy(to, tables)
+};
+/// The same from maps prepared already.
+void alignAccepted(const AlignmentMaps& maps, const WallAlignmentSettings& settings,
+                   MergeResult& result);
 
 }  // namespace mrslam::fusion
