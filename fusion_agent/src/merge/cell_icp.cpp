@@ -82,6 +82,17 @@ NearestWall::NearestWall(const std::vector<CellSample>& walls) {
   }
 }
 
+std::vector<Eigen::Vector2d> occupiedCells(const std::vector<CellSample>& samples,
+                                           const ComparisonTables& tables) {
+  std::vector<Eigen::Vector2d> occupied;
+  for (const CellSample& sample : samples) {
+    if (tables.isOccupied(sample.code)) {
+      occupied.emplace_back(sample.x, sample.y);
+    }
+  }
+  return occupied;
+}
+
 std::optional<Eigen::Vector2d> NearestWall::near(const Eigen::Vector2d& point,
                                                  double max_distance) const {
   const int x = roundToInt(point.x()) - origin_.x;
@@ -103,12 +114,12 @@ std::optional<Eigen::Vector2d> NearestWall::near(const Eigen::Vector2d& point,
 
 GridTransform refineOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs,
                             const ComparisonTables& tables, const SeedMergerSettings& settings) {
-  std::vector<Eigen::Vector2d> walls_from;
-  for (const CellSample& sample : inputs.all_samples) {
-    if (tables.isOccupied(sample.code)) {
-      walls_from.emplace_back(sample.x, sample.y);
-    }
+  std::vector<Eigen::Vector2d> built;  // for inputs prepared without the wall ICP's cells
+  if (inputs.occupied_from.empty()) {
+    built = occupiedCells(inputs.all_samples, tables);
   }
+  const std::vector<Eigen::Vector2d>& walls_from =
+      inputs.occupied_from.empty() ? built : inputs.occupied_from;
   const std::shared_ptr<const NearestWall> nearest =
       inputs.nearest_wall_to ? inputs.nearest_wall_to
                              : std::make_shared<const NearestWall>(inputs.occupied_to);

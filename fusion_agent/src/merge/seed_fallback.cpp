@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <utility>
+#include <vector>
 
 #include "seed_stages.hpp"
 
@@ -69,24 +71,43 @@ cv::Mat coarseSource(const std::vector<cv::Point>& occupied, double theta,
   return source;
 }
 
-// Circular cross correlation c[k] = Σ_u target(u + k) source(u) by DFT.
-cv::Mat crossCorrelation(const cv::Mat& target, const cv::Mat& source) {
-  const cv::Size size(cv::getOptimalDFTSize(target.cols + source.cols),
-                      cv::getOptimalDFTSize(target.rows + source.rows));
-  cv::Mat padded_target(size, CV_32F, cv::Scalar(0.0f));
-  cv::Mat padded_source(size, CV_32F, cv::Scalar(0.0f));
-  target.copyTo(padded_target(cv::Rect(0, 0, target.cols, target.rows)));
-  source.copyTo(padded_source(cv::Rect(0, 0, source.cols, source.rows)));
-  cv::Mat spectrum_target;
-  cv::Mat spectrum_source;
-  cv::dft(padded_target, spectrum_target);
-  cv::dft(padded_source, spectrum_source);
-  cv::Mat product;
-  cv::mulSpectrums(spectrum_target, spectrum_source, product, 0, true);
-  cv::Mat correlation;
-  cv::idft(product, correlation, cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
-  return correlation;
-}
+// Circular cross correlations c[k] = Σ_u target(u + k) source(u) by DFT, for one target and many
+// sources; the target's spectrum is kept for each padded size it was taken at.
+class TargetCorrelator {
+ public:
+  explicit TargetCorrelator(const cv::Mat& target) : target_(target) {}
+
+  cv::Mat correlate(const cv::Mat& source) {
+    const cv::Size size(cv::getOptimalDFTSize(target_.cols + source.cols),
+                        cv::getOptimalDFTSize(target_.rows + source.rows));
+    cv::Mat product;
+    cv::mulSpectrums(spectrumOfTarget(size), spectrum(source, size), product, 0, true);
+    cv::Mat correlation;
+    cv::idft(product, correlation, cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    return correlation;
+  }
+
+ private:
+  static cv::Mat spectrum(const cv::Mat& image, const cv::Size& size) {
+    cv::Mat padded(size, CV_32F, cv::Scalar(0.0f));
+    image.copyTo(padded(cv::Rect(0, 0, image.cols, image.rows)));
+    cv::Mat result;
+    cv::dft(padded, result);
+    return result;
+  }
+  const cv::Mat& spectrumOfTarget(const cv::Size& size) {
+    for (const auto& [at, kept] : target_spectra_) {
+      if (at == size) {
+        return kept;
+      }
+    }
+    target_spectra_.emplace_back(size, spectrum(target_, size));
+    return target_spectra_.back().second;
+  }
+
+  const cv::Mat& target_;
+  std::vector<std::pair<cv::Size, cv::Mat>> target_spectra_;
+};
 
 // The strongest peaks of a correlation as coarse shifts (negative shifts wrap around).
 std::vector<cv::Point> strongestShifts(cv::Mat correlation, int count) {
@@ -125,13 +146,14 @@ std::vector<Hypothesis> fallbackHypotheses(const PreparedMap& from, const Prepar
     return hypotheses;
   }
   const cv::Mat target = coarseTarget(to, to_map, settings.similarity.free_threshold);
+  TargetCorrelator correlator(target);
   for (const double half_turn :
        rotationCandidates(radon_correlation, settings.fallback_rotations)) {
     for (const double theta : {half_turn, half_turn + M_PI}) {
       Eigen::Vector2d corner;
       const cv::Mat source = coarseSource(occupied, theta, corner);
       for (const cv::Point& shift :
-           strongestShifts(crossCorrelation(target, source), settings.fallback_translations)) {
+           strongestShifts(correlator.correlate(source), settings.fallback_translations)) {
         GridTransform coarse;
         coarse.theta_rad = std::remainder(theta, 2.0 * M_PI);
         coarse.t_cells = kCoarse * Eigen::Vector2d(shift.x, shift.y) - corner;

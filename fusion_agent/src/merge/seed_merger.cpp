@@ -82,6 +82,7 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
   }
   if (settings_.wall_icp_iterations > 0) {
     inputs.nearest_wall_to = std::make_shared<const seed::NearestWall>(inputs.occupied_to);
+    inputs.occupied_from = seed::occupiedCells(inputs.all_samples, tables_);
   }
   inputs.occupied_to_samples =
       sampleKnownCells(inputs.occupied_to, tables_, settings_.search_occupied_samples, 0);
@@ -186,7 +187,7 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
   lap(clock, timings_.verification);
   if (inputs.walls_from && inputs.walls_to) {  // block 8's fields, when it settled on them
     alignAccepted({*inputs.walls_from, *inputs.walls_to, tables_, inputs.all_samples, inputs.to,
-                   inputs.entropy_from, inputs.entropy_to},
+                   inputs.entropy_from, inputs.entropy_to, &refined.full},
                   settings_.wall_alignment, result);
   } else {
     alignAccepted(from, to, settings_.wall_alignment, settings_.similarity, result);

@@ -95,8 +95,13 @@ std::vector<Hypothesis> poseHypotheses(const std::vector<PairCandidate>& pairs,
 /// The `count` best hypotheses, no two within 3 cells and 2° of each other.
 std::vector<Hypothesis> bestDistinct(std::vector<Hypothesis> hypotheses, int count);
 
+/// The occupied ones among `samples`, as cells (column, row).
+std::vector<Eigen::Vector2d> occupiedCells(const std::vector<CellSample>& samples,
+                                           const ComparisonTables& tables);
+
 /// For every cell near a map's walls (within 8 cells of their bounding box), the nearest wall
 /// cell, by a labelled distance transform: the wall ICP's lookup (cell_icp.cpp).
+
 class NearestWall {
  public:
   explicit NearestWall(const std::vector<CellSample>& walls);
@@ -125,6 +130,7 @@ struct SearchInputs {
   cv::Mat wall_balance_to;                        ///< wallBalanceImage(to) (wall anchoring)
   cv::Mat wall_balance_from;                      ///< wallBalanceImage(from) (same, reversed)
   std::shared_ptr<const NearestWall> nearest_wall_to;  ///< occupied_to's (wall ICP), built once
+  std::vector<Eigen::Vector2d> occupied_from;          ///< every occupied cell of `from` (same)
   std::shared_ptr<const WallField> walls_from;  ///< with settle_alignment: `from`'s wall field
   std::shared_ptr<const WallField> walls_to;    ///< ... and `to`'s
 };

@@ -43,6 +43,7 @@ cv::Mat likelihoodField(const cv::Mat& known, const Cells& walls, double sigma_c
     int dx;
     int dy;
     float f;
+    std::ptrdiff_t offset;  // dy rows and dx columns in the (continuous) images
   };
   const int reach = static_cast<int>(std::ceil(3.0 * sigma_cells));
   std::vector<Weight> kernel;
@@ -50,12 +51,12 @@ cv::Mat likelihoodField(const cv::Mat& known, const Cells& walls, double sigma_c
     for (int dx = -reach; dx <= reach; ++dx) {
       const double f = std::exp(-(dx * dx + dy * dy) / (2.0 * sigma_cells * sigma_cells));
       if (f >= kLeastField) {
-        kernel.push_back({dx, dy, static_cast<float>(f)});
+        kernel.push_back(
+            {dx, dy, static_cast<float>(f), static_cast<std::ptrdiff_t>(dy) * known.cols + dx});
       }
     }
   }
   cv::Mat field(known.size(), CV_32F, cv::Scalar(0.0f));
-  const std::ptrdiff_t stride = known.cols;  // both images are continuous
   for (const Eigen::Vector2d& wall : walls) {
     const int x = static_cast<int>(wall.x());
     const int y = static_cast<int>(wall.y());
@@ -64,9 +65,8 @@ cv::Mat likelihoodField(const cv::Mat& known, const Cells& walls, double sigma_c
       const std::uint8_t* known_at = known.ptr<std::uint8_t>(y) + x;
       float* field_at = field.ptr<float>(y) + x;
       for (const Weight& weight : kernel) {
-        const std::ptrdiff_t offset = weight.dy * stride + weight.dx;
-        if (known_at[offset] != 0) {
-          field_at[offset] = std::max(field_at[offset], weight.f);
+        if (known_at[weight.offset] != 0) {
+          field_at[weight.offset] = std::max(field_at[weight.offset], weight.f);
         }
       }
       continue;
@@ -464,7 +464,8 @@ void alignAccepted(const AlignmentMaps& maps, const WallAlignmentSettings& setti
   const GridTransform aligned =
       alignWalls(maps.field_from, maps.field_to, result.T_to_from, settings);
   const Agreement at_found =
-      compareAt(maps.known_from, maps.codes_to, result.T_to_from, maps.tables);
+      maps.at_found ? *maps.at_found
+                    : compareAt(maps.known_from, maps.codes_to, result.T_to_from, maps.tables);
   const Agreement at_aligned = compareAt(maps.known_from, maps.codes_to, aligned, maps.tables);
   // The walls may pull a little off where the cells of the two maps agree best (crops resampled
   // differently, a wall doubled by pose error): the alignment never lowers V.

@@ -118,6 +118,8 @@ struct AlignmentMaps {
   const CodeImage& codes_to;                  ///< codeImage(to, any pad, tables)
   double entropy_from = 0.0;                  ///< mapEntropy(from, tables)
   double entropy_to = 0.0;                    ///< mapEntropy(to, tables)
+  /// compareAt(known_from, codes_to, result.T_to_from, tables) when the merger has it already.
+  const Agreement* at_found = nullptr;
 };
 /// The same from maps prepared already.
 void alignAccepted(const AlignmentMaps& maps, const WallAlignmentSettings& settings,
