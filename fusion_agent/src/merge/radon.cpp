@@ -69,13 +69,18 @@ cv::Mat radonTransform(const std::vector<cv::Point>& cells, cv::Size size, doubl
     xs.push_back(static_cast<float>(cell.x - centre_x));
     ys.push_back(static_cast<float>(cell.y - centre_y));
   }
+  std::vector<int> bins(xs.size());
   for (int j = 0; j < angles; ++j) {
     const auto c = static_cast<float>(std::cos(j * M_PI / angles));
     const auto s = static_cast<float>(std::sin(j * M_PI / angles));
-    auto* row = radon.ptr<float>(j);
+    // ρ + half + ½ ≥ 0 by the choice of `half`: truncation rounds to the nearest bin. The bins
+    // first (a loop the compiler vectorises), then the counts.
     for (std::size_t i = 0; i < xs.size(); ++i) {
-      // ρ + half + ½ ≥ 0 by the choice of `half`: truncation rounds to the nearest bin.
-      row[static_cast<int>(xs[i] * c + ys[i] * s + static_cast<float>(half) + 0.5f)] += 1.0f;
+      bins[i] = static_cast<int>(xs[i] * c + ys[i] * s + static_cast<float>(half) + 0.5f);
+    }
+    auto* row = radon.ptr<float>(j);
+    for (const int bin : bins) {
+      row[bin] += 1.0f;
     }
   }
   return radon;

@@ -97,12 +97,17 @@ Agreement countShifted(const std::vector<PlacedSample>& placed, const CodeImage&
 // The same and the entropy change of the merge.
 Agreement compareShifted(const std::vector<PlacedSample>& placed, const CodeImage& to,
                          std::ptrdiff_t shift, const ComparisonTables& tables) {
-  Agreement sums = countShifted(placed, to, shift, tables);
+  const std::uint8_t* classes = to.classes.ptr<std::uint8_t>(0) + shift;
   const std::uint8_t* codes = to.codes.ptr<std::uint8_t>(0) + shift;
+  std::uint64_t packed = 0;
   double entropy_change = 0.0;
   for (const PlacedSample& sample : placed) {
+    packed += tables.packedAgreement(sample.class_row + classes[sample.index]);
     entropy_change += tables.entropyChange(sample.code, codes[sample.index]);
   }
+  Agreement sums;
+  sums.agreement = static_cast<long long>(packed & 0xffffffffu);
+  sums.disagreement = static_cast<long long>(packed >> 32);
   sums.entropy_change = entropy_change;
   return sums;
 }
