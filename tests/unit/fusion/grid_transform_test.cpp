@@ -22,6 +22,19 @@ TEST(GridTransformTest, InverseUndoesTheTransform) {
   EXPECT_NEAR((transform.inverse().apply(transform.apply(p)) - p).norm(), 0.0, 1e-12);
 }
 
+TEST(GridTransformTest, CellMappingEqualsApplyBitForBit) {
+  for (const double theta : {0.0, 0.7, -2.9, M_PI, 1e-9}) {
+    GridTransform transform;
+    transform.theta_rad = theta;
+    transform.t_cells = Eigen::Vector2d(12.5, -3.25);
+    const CellMapping mapping(transform);
+    for (const Eigen::Vector2d& p :
+         {Eigen::Vector2d(4.0, 9.0), Eigen::Vector2d(-311.5, 0.125), Eigen::Vector2d(1e5, -7.0)}) {
+      EXPECT_EQ(mapping(p), transform.apply(p)) << theta;
+    }
+  }
+}
+
 TEST(GridTransformTest, MetricAndCellTransformsAgreeOnCellCentres) {
   const GridGeometry from = geometryAt(-1.3, 2.15);
   const GridGeometry to = geometryAt(0.45, -0.8);

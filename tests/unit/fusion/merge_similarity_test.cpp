@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "mrslam/fusion/merge/similarity.hpp"
 
@@ -160,6 +161,59 @@ TEST(MergeSimilarityTest, RotatedSamplesLandOnTheirRoundedCells) {
   const Agreement sums = compareAt(knownCells(from, tables), codeImage(to, 1, tables), T, tables);
   EXPECT_EQ(sums.disagreement, 0);
   EXPECT_EQ(sums.agreement, 5);  // only the column x = 0 of `from` lands inside `to`
+}
+
+// compareAt against its definition, one sample at a time: each known cell of `from` lands on the
+// cell floor(T p + 0.5) of `to`; cells known in both count as agreeing when their classes are
+// equal and disagreeing otherwise, and add their entropy change. Random maps, turned and shifted
+// so that some cells land off `to` and on its padding.
+TEST(MergeSimilarityTest, CompareAtEqualsOneSampleAtATime) {
+  std::mt19937 random(11);
+  std::uniform_int_distribution<int> value(-1, 100);
+  GridMap from = mapOf(37, 29);
+  GridMap to = mapOf(41, 33);
+  for (GridMap* map : {&from, &to}) {
+    for (int y = 0; y < map->geometry.height; ++y) {
+      for (int x = 0; x < map->geometry.width; ++x) {
+        map->at(x, y) = static_cast<std::int8_t>(value(random));
+      }
+    }
+  }
+  const ComparisonTables tables{SimilaritySettings{}};
+  const std::vector<CellSample> cells = knownCells(from, tables);
+  std::uniform_real_distribution<double> turn(-M_PI, M_PI);
+  std::uniform_real_distribution<double> shift(-12.0, 12.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    GridTransform T;
+    T.theta_rad = turn(random);
+    T.t_cells = Eigen::Vector2d(20.0 + shift(random), 16.0 + shift(random));
+    Agreement expected;
+    for (const CellSample& cell : cells) {
+      const Eigen::Vector2d landed = T.apply(Eigen::Vector2d(cell.x, cell.y));
+      const int x = static_cast<int>(std::floor(landed.x() + 0.5));
+      const int y = static_cast<int>(std::floor(landed.y() + 0.5));
+      if (x < 0 || y < 0 || x >= to.geometry.width || y >= to.geometry.height || to.at(x, y) < 0) {
+        continue;
+      }
+      const auto other = static_cast<std::uint8_t>(to.at(x, y));
+      const int from_class = tables.classOf(cell.code);
+      const int to_class = tables.classOf(other);
+      if (from_class != 0 && to_class != 0) {
+        (from_class == to_class ? expected.agreement : expected.disagreement) += 1;
+      }
+      expected.entropy_change += tables.entropyChange(cell.code, other);
+    }
+    for (const int pad : {1, 5}) {
+      const Agreement sums = compareAt(cells, codeImage(to, pad, tables), T, tables);
+      EXPECT_EQ(sums.agreement, expected.agreement) << "trial " << trial << ", pad " << pad;
+      EXPECT_EQ(sums.disagreement, expected.disagreement) << "trial " << trial;
+      EXPECT_NEAR(sums.entropy_change, expected.entropy_change, 1e-9) << "trial " << trial;
+      const Agreement counts = compareAt(cells, codeImage(to, pad, tables), T, tables, false);
+      EXPECT_EQ(counts.agreement, expected.agreement);
+      EXPECT_EQ(counts.disagreement, expected.disagreement);
+      EXPECT_EQ(counts.entropy_change, 0.0);
+    }
+  }
 }
 
 }  // namespace
