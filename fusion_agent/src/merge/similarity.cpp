@@ -27,24 +27,35 @@ struct PlacedSample {
   std::uint8_t class_row;  // 3 · class: the row of the packed agreement table
 };
 
-// A sample's cell in `to` under T_to_from: floor(T p + 0.5) in each coordinate. The samples come
-// row by row, so the products of a row's y are taken once for the row.
+// Where samples of `from` land in the padded code image of `to` under T_to_from: the cell
+// floor(T p + 0.5) in each coordinate, kept when it stays inside the padded image for every shift
+// within ±reach. The samples come row by row, so the products of a row's y are taken once.
 class CellPlacer {
  public:
-  explicit CellPlacer(const GridTransform& T_to_from)
+  CellPlacer(const GridTransform& T_to_from, const CodeImage& to, int reach)
       : c_(std::cos(T_to_from.theta_rad)),
         s_(std::sin(T_to_from.theta_rad)),
         tx_(T_to_from.t_cells.x() + 0.5),
-        ty_(T_to_from.t_cells.y() + 0.5) {}
+        ty_(T_to_from.t_cells.y() + 0.5),
+        low_(reach - to.pad),
+        high_x_(to.codes.cols - to.pad - 1 - reach),
+        high_y_(to.codes.rows - to.pad - 1 - reach),
+        pad_(to.pad),
+        columns_(to.codes.cols) {}
 
-  void place(const CellSample& sample, int& x, int& y) {
+  /// The sample's index in the padded image, or -1 when it lands too near its border or off it.
+  std::ptrdiff_t index(const CellSample& sample) {
     if (sample.y != row_) {
       row_ = sample.y;
       s_row_ = s_ * row_;
       c_row_ = c_ * row_;
     }
-    x = floorToInt(c_ * sample.x - s_row_ + tx_);
-    y = floorToInt(s_ * sample.x + c_row_ + ty_);
+    const int x = floorToInt(c_ * sample.x - s_row_ + tx_);
+    const int y = floorToInt(s_ * sample.x + c_row_ + ty_);
+    if (x < low_ || y < low_ || x > high_x_ || y > high_y_) {
+      return -1;
+    }
+    return static_cast<std::ptrdiff_t>(y + pad_) * columns_ + x + pad_;
   }
 
  private:
@@ -52,6 +63,11 @@ class CellPlacer {
   double s_;
   double tx_;
   double ty_;
+  int low_;
+  int high_x_;
+  int high_y_;
+  int pad_;
+  std::ptrdiff_t columns_;
   int row_ = std::numeric_limits<int>::min();
   double s_row_ = 0.0;
   double c_row_ = 0.0;
@@ -63,21 +79,24 @@ std::vector<PlacedSample> place(const std::vector<CellSample>& samples, const Co
                                 const ComparisonTables& tables) {
   std::vector<PlacedSample> placed;
   placed.reserve(samples.size());
-  CellPlacer placer(T_to_from);
-  const int low = reach - to.pad;
-  const int high_x = to.codes.cols - to.pad - 1 - reach;
-  const int high_y = to.codes.rows - to.pad - 1 - reach;
+  CellPlacer placer(T_to_from, to, reach);
   for (const CellSample& sample : samples) {
-    int x = 0;
-    int y = 0;
-    placer.place(sample, x, y);
-    if (x < low || y < low || x > high_x || y > high_y) {
-      continue;
+    const std::ptrdiff_t index = placer.index(sample);
+    if (index >= 0) {
+      placed.push_back(
+          {index, sample.code, static_cast<std::uint8_t>(3 * tables.classOf(sample.code))});
     }
-    placed.push_back({static_cast<std::ptrdiff_t>(y + to.pad) * to.codes.cols + x + to.pad,
-                      sample.code, static_cast<std::uint8_t>(3 * tables.classOf(sample.code))});
   }
   return placed;
+}
+
+// agr (low 32 bits) and dis (high 32 bits) summed from the packed agreement table, unpacked.
+Agreement unpacked(std::uint64_t packed, double entropy_change) {
+  Agreement sums;
+  sums.agreement = static_cast<long long>(packed & 0xffffffffu);
+  sums.disagreement = static_cast<long long>(packed >> 32);
+  sums.entropy_change = entropy_change;
+  return sums;
 }
 
 // agr and dis of the placed samples shifted by `shift` (one table read per sample).
@@ -88,10 +107,7 @@ Agreement countShifted(const std::vector<PlacedSample>& placed, const CodeImage&
   for (const PlacedSample& sample : placed) {
     packed += tables.packedAgreement(sample.class_row + classes[sample.index]);
   }
-  Agreement sums;
-  sums.agreement = static_cast<long long>(packed & 0xffffffffu);
-  sums.disagreement = static_cast<long long>(packed >> 32);
-  return sums;
+  return unpacked(packed, 0.0);
 }
 
 // The same and the entropy change of the merge.
@@ -105,11 +121,7 @@ Agreement compareShifted(const std::vector<PlacedSample>& placed, const CodeImag
     packed += tables.packedAgreement(sample.class_row + classes[sample.index]);
     entropy_change += tables.entropyChange(sample.code, codes[sample.index]);
   }
-  Agreement sums;
-  sums.agreement = static_cast<long long>(packed & 0xffffffffu);
-  sums.disagreement = static_cast<long long>(packed >> 32);
-  sums.entropy_change = entropy_change;
-  return sums;
+  return unpacked(packed, entropy_change);
 }
 
 GridTransform shifted(const GridTransform& T, int dx, int dy) {
@@ -223,33 +235,22 @@ Agreement compareAt(const std::vector<CellSample>& samples, const CodeImage& to,
                     const GridTransform& T_to_from, const ComparisonTables& tables,
                     bool with_entropy) {
   // place() and compareShifted() at no shift in one pass, without storing the placed samples.
-  CellPlacer placer(T_to_from);
-  const int low = -to.pad;
-  const int high_x = to.codes.cols - to.pad - 1;
-  const int high_y = to.codes.rows - to.pad - 1;
+  CellPlacer placer(T_to_from, to, 0);
   const std::uint8_t* classes = to.classes.ptr<std::uint8_t>(0);
   const std::uint8_t* codes = to.codes.ptr<std::uint8_t>(0);
   std::uint64_t packed = 0;
   double entropy_change = 0.0;
   for (const CellSample& sample : samples) {
-    int x = 0;
-    int y = 0;
-    placer.place(sample, x, y);
-    if (x < low || y < low || x > high_x || y > high_y) {
+    const std::ptrdiff_t index = placer.index(sample);
+    if (index < 0) {
       continue;
     }
-    const std::ptrdiff_t index =
-        static_cast<std::ptrdiff_t>(y + to.pad) * to.codes.cols + x + to.pad;
     packed += tables.packedAgreement(3 * tables.classOf(sample.code) + classes[index]);
     if (with_entropy) {
       entropy_change += tables.entropyChange(sample.code, codes[index]);
     }
   }
-  Agreement sums;
-  sums.agreement = static_cast<long long>(packed & 0xffffffffu);
-  sums.disagreement = static_cast<long long>(packed >> 32);
-  sums.entropy_change = with_entropy ? entropy_change : sums.entropy_change;
-  return sums;
+  return unpacked(packed, entropy_change);
 }
 
 TranslationSearch searchTranslation(const std::vector<CellSample>& samples, const CodeImage& to,
