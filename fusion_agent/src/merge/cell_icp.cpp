@@ -113,16 +113,12 @@ std::optional<Eigen::Vector2d> NearestWall::near(const Eigen::Vector2d& point,
 }
 
 GridTransform refineOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs,
-                            const ComparisonTables& tables, const SeedMergerSettings& settings) {
-  std::vector<Eigen::Vector2d> built;  // for inputs prepared without the wall ICP's cells
-  if (inputs.occupied_from.empty()) {
-    built = occupiedCells(inputs.all_samples, tables);
+                            const SeedMergerSettings& settings) {
+  if (!inputs.nearest_wall_to) {
+    return T_to_from;  // the inputs were prepared without the wall ICP
   }
-  const std::vector<Eigen::Vector2d>& walls_from =
-      inputs.occupied_from.empty() ? built : inputs.occupied_from;
-  const std::shared_ptr<const NearestWall> nearest =
-      inputs.nearest_wall_to ? inputs.nearest_wall_to
-                             : std::make_shared<const NearestWall>(inputs.occupied_to);
+  const std::vector<Eigen::Vector2d>& walls_from = inputs.occupied_from;
+  const NearestWall& nearest = *inputs.nearest_wall_to;
   GridTransform estimate = T_to_from;
   for (int iteration = 0; iteration < settings.wall_icp_iterations; ++iteration) {
     std::vector<Eigen::Vector2d> matched_from;
@@ -131,7 +127,7 @@ GridTransform refineOnWalls(const GridTransform& T_to_from, const SearchInputs& 
     matched_to.reserve(walls_from.size());
     const CellMapping to_of(estimate);
     for (const Eigen::Vector2d& wall : walls_from) {
-      if (const auto target = nearest->near(to_of(wall), settings.wall_icp_distance_cells)) {
+      if (const auto target = nearest.near(to_of(wall), settings.wall_icp_distance_cells)) {
         matched_from.push_back(wall);
         matched_to.push_back(*target);
       }

@@ -456,7 +456,7 @@ Refined settleBySimilarity(const GridTransform& polished, const SearchInputs& in
   if (settings.wall_icp_iterations > 0) {
     // Walls onto walls, kept when the maps agree at least as well there; the entropy and
     // ambiguity figures are then taken around the refined transform.
-    const GridTransform on_walls = refineOnWalls(refined.T_to_from, inputs, tables, settings);
+    const GridTransform on_walls = refineOnWalls(refined.T_to_from, inputs, settings);
     const Agreement at_walls = compareAt(inputs.all_samples, inputs.to, on_walls, tables);
     if (at_walls.similarity() >= refined.full.similarity()) {
       refined.T_to_from = on_walls;

@@ -101,7 +101,6 @@ std::vector<Eigen::Vector2d> occupiedCells(const std::vector<CellSample>& sample
 
 /// For every cell near a map's walls (within 8 cells of their bounding box), the nearest wall
 /// cell, by a labelled distance transform: the wall ICP's lookup (cell_icp.cpp).
-
 class NearestWall {
  public:
   explicit NearestWall(const std::vector<CellSample>& walls);
@@ -130,7 +129,7 @@ struct SearchInputs {
   cv::Mat wall_balance_to;                        ///< wallBalanceImage(to) (wall anchoring)
   cv::Mat wall_balance_from;                      ///< wallBalanceImage(from) (same, reversed)
   std::shared_ptr<const NearestWall> nearest_wall_to;  ///< occupied_to's (wall ICP), built once
-  std::vector<Eigen::Vector2d> occupied_from;          ///< every occupied cell of `from` (same)
+  std::vector<Eigen::Vector2d> occupied_from;          ///< every occupied cell of `from` (wall ICP)
   std::shared_ptr<const WallField> walls_from;  ///< with settle_alignment: `from`'s wall field
   std::shared_ptr<const WallField> walls_to;    ///< ... and `to`'s
 };
@@ -205,9 +204,9 @@ Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
 
 /// Step 9 of seed_merger.hpp: `T_to_from` refined by point-to-point ICP of `from`'s occupied
 /// cells onto `to`'s (nearest wall within wall_icp_distance_cells); unchanged when too few walls
-/// meet.
+/// meet or when `inputs` were prepared without the wall ICP (wall_icp_iterations 0).
 GridTransform refineOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs,
-                            const ComparisonTables& tables, const SeedMergerSettings& settings);
+                            const SeedMergerSettings& settings);
 
 /// Walls of `from` near walls of `to` minus those on `to`'s other known cells, plus the same of
 /// `to`'s walls on `from` (wall_anchor.cpp); free cells do not count.

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <opencv2/imgproc.hpp>
 
 namespace mrslam::fusion {
@@ -27,16 +26,12 @@ struct PlacedSample {
   std::uint8_t class_row;  // 3 · class: the row of the packed agreement table
 };
 
-// Where samples of `from` land in the padded code image of `to` under T_to_from: the cell
-// floor(T p + 0.5) in each coordinate, kept when it stays inside the padded image for every shift
-// within ±reach. The samples come row by row, so the products of a row's y are taken once.
+// Where samples of `from` land in the padded code image of `to` (CellRounding), kept when they
+// stay inside the padded image for every shift within ±reach.
 class CellPlacer {
  public:
   CellPlacer(const GridTransform& T_to_from, const CodeImage& to, int reach)
-      : c_(std::cos(T_to_from.theta_rad)),
-        s_(std::sin(T_to_from.theta_rad)),
-        tx_(T_to_from.t_cells.x() + 0.5),
-        ty_(T_to_from.t_cells.y() + 0.5),
+      : rounding_(T_to_from),
         low_(reach - to.pad),
         high_x_(to.codes.cols - to.pad - 1 - reach),
         high_y_(to.codes.rows - to.pad - 1 - reach),
@@ -45,32 +40,20 @@ class CellPlacer {
 
   /// The sample's index in the padded image, or -1 when it lands too near its border or off it.
   std::ptrdiff_t index(const CellSample& sample) {
-    if (sample.y != row_) {
-      row_ = sample.y;
-      s_row_ = s_ * row_;
-      c_row_ = c_ * row_;
-    }
-    const int x = floorToInt(c_ * sample.x - s_row_ + tx_);
-    const int y = floorToInt(s_ * sample.x + c_row_ + ty_);
-    if (x < low_ || y < low_ || x > high_x_ || y > high_y_) {
+    const cv::Point cell = rounding_.landing(sample.x, sample.y);
+    if (cell.x < low_ || cell.y < low_ || cell.x > high_x_ || cell.y > high_y_) {
       return -1;
     }
-    return static_cast<std::ptrdiff_t>(y + pad_) * columns_ + x + pad_;
+    return static_cast<std::ptrdiff_t>(cell.y + pad_) * columns_ + cell.x + pad_;
   }
 
  private:
-  double c_;
-  double s_;
-  double tx_;
-  double ty_;
+  CellRounding rounding_;
   int low_;
   int high_x_;
   int high_y_;
   int pad_;
   std::ptrdiff_t columns_;
-  int row_ = std::numeric_limits<int>::min();
-  double s_row_ = 0.0;
-  double c_row_ = 0.0;
 };
 
 // Places every sample that stays inside the padded image for all shifts within ±reach.

@@ -466,7 +466,10 @@ void alignAccepted(const AlignmentMaps& maps, const WallAlignmentSettings& setti
   const Agreement at_found =
       maps.at_found ? *maps.at_found
                     : compareAt(maps.known_from, maps.codes_to, result.T_to_from, maps.tables);
-  const Agreement at_aligned = compareAt(maps.known_from, maps.codes_to, aligned, maps.tables);
+  const bool moved = aligned.theta_rad != result.T_to_from.theta_rad ||
+                     aligned.t_cells != result.T_to_from.t_cells;
+  const Agreement at_aligned =
+      moved ? compareAt(maps.known_from, maps.codes_to, aligned, maps.tables) : at_found;
   // The walls may pull a little off where the cells of the two maps agree best (crops resampled
   // differently, a wall doubled by pose error): the alignment never lowers V.
   const bool keep = verificationIndex(at_aligned) >= verificationIndex(at_found);

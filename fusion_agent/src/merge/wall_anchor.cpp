@@ -91,7 +91,7 @@ namespace {
 // at least as high.
 void keepIcpOnWalls(const SearchInputs& inputs, const ComparisonTables& tables,
                     const SeedMergerSettings& settings, Refined& refined) {
-  const GridTransform on_walls = refineOnWalls(refined.T_to_from, inputs, tables, settings);
+  const GridTransform on_walls = refineOnWalls(refined.T_to_from, inputs, settings);
   const Agreement at_walls = compareAt(inputs.all_samples, inputs.to, on_walls, tables);
   if (at_walls.similarity() >= refined.full.similarity() ||
       wallBalance(on_walls, inputs, tables) >= wallBalance(refined.T_to_from, inputs, tables)) {

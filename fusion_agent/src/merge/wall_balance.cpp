@@ -15,10 +15,7 @@ cv::Mat readThrough(const CodeImage& from, const cv::Mat& balance_from,
                     const GridTransform& T_from_to, const cv::Point& origin,
                     const cv::Mat& needed) {
   cv::Mat read_through(needed.size(), CV_8S, cv::Scalar(0));
-  const double c = std::cos(T_from_to.theta_rad);
-  const double s = std::sin(T_from_to.theta_rad);
-  const double tx = T_from_to.t_cells.x() + 0.5;
-  const double ty = T_from_to.t_cells.y() + 0.5;
+  CellRounding rounding(T_from_to);
   const int high_x = from.codes.cols - from.pad - 1;
   const int high_y = from.codes.rows - from.pad - 1;
   for (int row = 0; row < needed.rows; ++row) {
@@ -29,20 +26,14 @@ cv::Mat readThrough(const CodeImage& from, const cv::Mat& balance_from,
       if (wanted[column] == 0) {
         continue;
       }
-      const int qx = origin.x + column;
-      const int x = floorToInt(c * qx - s * qy + tx);
-      const int y = floorToInt(s * qx + c * qy + ty);
-      if (x >= -from.pad && y >= -from.pad && x <= high_x && y <= high_y) {
-        out[column] = balance_from.at<std::int8_t>(y + from.pad, x + from.pad);
+      const cv::Point cell = rounding.landing(origin.x + column, qy);
+      if (cell.x >= -from.pad && cell.y >= -from.pad && cell.x <= high_x && cell.y <= high_y) {
+        out[column] = balance_from.at<std::int8_t>(cell.y + from.pad, cell.x + from.pad);
       }
     }
   }
   return read_through;
 }
-
-}  // namespace
-
-namespace {
 
 constexpr int kLanes = 16;  // columns summed at once by windowSumsOfNarrowWindows
 
@@ -146,16 +137,12 @@ std::vector<long long> wallBalancesAfterShifts(const std::vector<CellSample>& sa
                                                const ComparisonTables& tables) {
   // Each wall sample's cell in the padded image of `to` at the unshifted transform; a shift
   // moves every cell by the same whole cells.
-  const double c = std::cos(T_to_from.theta_rad);
-  const double s = std::sin(T_to_from.theta_rad);
-  const double tx = T_to_from.t_cells.x() + 0.5;
-  const double ty = T_to_from.t_cells.y() + 0.5;
+  CellRounding rounding(T_to_from);
   std::vector<cv::Point> centres;
   centres.reserve(samples.size());
   for (const CellSample& sample : samples) {
     if (tables.isOccupied(sample.code)) {
-      centres.emplace_back(floorToInt(c * sample.x - s * sample.y + tx) + to.pad,
-                           floorToInt(s * sample.x + c * sample.y + ty) + to.pad);
+      centres.push_back(rounding.landing(sample.x, sample.y) + cv::Point(to.pad, to.pad));
     }
   }
   return windowSums(balance_to, centres, reach, 1);

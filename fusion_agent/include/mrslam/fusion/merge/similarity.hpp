@@ -19,7 +19,9 @@
 // per-pair answers in lookup tables, so a shift costs two table reads per sample.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -79,6 +81,35 @@ inline int floorToInt(double v) {
   const int truncated = static_cast<int>(v);
   return v < truncated ? truncated - 1 : truncated;
 }
+
+/// The cell (column, row) where a cell of `from` lands in `to` under T_to_from: floor(T p + 0.5)
+/// in each coordinate, as every placement of samples rounds. Cells taken row by row reuse the
+/// products of their row.
+class CellRounding {
+ public:
+  explicit CellRounding(const GridTransform& T_to_from)
+      : c_(std::cos(T_to_from.theta_rad)),
+        s_(std::sin(T_to_from.theta_rad)),
+        tx_(T_to_from.t_cells.x() + 0.5),
+        ty_(T_to_from.t_cells.y() + 0.5) {}
+  cv::Point landing(int x, int y) {
+    if (y != row_) {
+      row_ = y;
+      s_row_ = s_ * row_;
+      c_row_ = c_ * row_;
+    }
+    return {floorToInt(c_ * x - s_row_ + tx_), floorToInt(s_ * x + c_row_ + ty_)};
+  }
+
+ private:
+  double c_;
+  double s_;
+  double tx_;
+  double ty_;
+  int row_ = std::numeric_limits<int>::min();
+  double s_row_ = 0.0;
+  double c_row_ = 0.0;
+};
 
 /// Every known cell of a map (known: of class free or occupied).
 std::vector<CellSample> knownCells(const GridMap& map, const ComparisonTables& tables);
