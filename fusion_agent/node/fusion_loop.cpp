@@ -9,7 +9,9 @@ namespace mrslam::fusion {
 
 namespace {
 
-constexpr double kFlushTimeoutS = 5.0;  // at the end: readers get this long to take the last map
+constexpr double kFlushTimeoutS = 5.0;
+constexpr std::size_t kMaxHeldRendezvous =
+    64;  // at the end: readers get this long to take the last map
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -20,7 +22,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 FusionLoop::FusionLoop(const FusionConfig& config)
     : config_(config),
       viewer_model_(config.viewer.enabled ? std::make_unique<ViewerModel>() : nullptr),
-      node_(config, store_, viewer_model_.get()) {
+      node_(config, store_, viewer_model_.get()),
+      rendezvous_(config.rendezvous, config.merge.material_change, kMaxHeldRendezvous) {
   if (viewer_model_) {
     viewer_ = std::make_unique<LiveViewer>(config.viewer, *viewer_model_);
   }
@@ -114,90 +117,65 @@ void FusionLoop::finalMerges() {
 
 namespace {
 
-constexpr std::size_t kMaxPendingRendezvous = 64;
-
-const RobotMap* mapOf(const std::vector<RobotMap>& maps, const std::string& robot_id) {
-  for (const RobotMap& map : maps) {
-    if (map.robot_id == robot_id) {
-      return &map;
-    }
-  }
-  return nullptr;
-}
-
-MergeAttempt rendezvousAttempt(const RendezvousHypothesis& hypothesis, const RendezvousCheck& check,
-                               double time_ms) {
+MergeAttempt rendezvousAttempt(const RendezvousOutcome& outcome) {
   MergeAttempt attempt;
-  attempt.from = hypothesis.from;
-  attempt.to = hypothesis.to;
-  attempt.result.accepted = check.accepted;
-  attempt.result.verification = check.verification;
+  attempt.from = outcome.hypothesis.from;
+  attempt.to = outcome.hypothesis.to;
+  attempt.result.accepted = outcome.check.accepted;
+  attempt.result.verification = outcome.check.verification;
   attempt.result.method = "rendezvous";
-  attempt.result.reason = check.reason;
+  attempt.result.reason = outcome.check.reason;
   attempt.result.trials = 1;
-  attempt.T_to_from = check.T_to_from;
-  attempt.time_ms = time_ms;
+  attempt.T_to_from = outcome.check.T_to_from;
+  attempt.time_ms = outcome.time_ms;
   return attempt;
 }
 
 }  // namespace
 
 void FusionLoop::checkRendezvous() {
-  for (const RendezvousHypothesis& hypothesis : node_.rendezvous().takeHypotheses()) {
+  const std::vector<RendezvousHypothesis> hypotheses = node_.rendezvous().takeHypotheses();
+  for (const RendezvousHypothesis& hypothesis : hypotheses) {
     spdlog::info("fusion: rendezvous of {} and {}: a hypothesis to check against the maps",
                  hypothesis.from, hypothesis.to);
-    pending_rendezvous_.push_back({hypothesis, 0});
   }
-  if (pending_rendezvous_.size() > kMaxPendingRendezvous) {
-    pending_rendezvous_.erase(pending_rendezvous_.begin(),
-                              pending_rendezvous_.end() - kMaxPendingRendezvous);
-  }
-  // A hypothesis is checked again only when the maps changed since its last check: the loop
-  // runs every 50 ms, and a snapshot copies every robot's map.
+  rendezvous_.add(hypotheses);
   const std::uint64_t version = store_.version();
-  const bool any_due = std::any_of(pending_rendezvous_.begin(), pending_rendezvous_.end(),
-                                   [version](const PendingRendezvous& pending) {
-                                     return pending.checked_at_version != version;
-                                   });
-  if (!any_due) {
-    return;
+  if (!rendezvous_.needsCheck(version)) {
+    return;  // a snapshot copies every robot's map: taken only when a check may be due
   }
-  const std::vector<RobotMap> maps = store_.snapshot();
-  std::vector<PendingRendezvous> still_pending;
-  for (PendingRendezvous& pending : pending_rendezvous_) {
-    const RobotMap* from = mapOf(maps, pending.hypothesis.from);
-    const RobotMap* to = mapOf(maps, pending.hypothesis.to);
-    if (from == nullptr || to == nullptr || pending.checked_at_version == version) {
-      still_pending.push_back(pending);  // wait for both maps, or for either to change
-      continue;
-    }
-    pending.checked_at_version = version;
-    const auto started = Clock::now();
-    const RendezvousCheck check =
-        fusion::checkRendezvous(pending.hypothesis, from->map, to->map, config_.rendezvous);
-    const MergeAttempt attempt =
-        rendezvousAttempt(pending.hypothesis, check, 1e3 * secondsSince(started));
-    node_.publishAttempt(attempt);
-    if (viewer_model_) {
-      viewer_model_->addAttempt(attempt);
-    }
-    if (check.accepted) {
-      PairwiseEstimate estimate;
-      estimate.from = attempt.from;
-      estimate.to = attempt.to;
-      estimate.T_to_from = check.T_to_from;
-      estimate.verification = check.verification;
-      estimate.method = "rendezvous";
-      changed_ = graph_.addVerified(estimate) || changed_;
-      spdlog::info("fusion: rendezvous {} -> {} verified by the maps (V {:.3f})", attempt.from,
-                   attempt.to, check.verification);
-    } else if (check.overlap_cells < config_.rendezvous.min_overlap_cells) {
-      still_pending.push_back(pending);  // the maps may grow into each other
-    } else {
-      spdlog::warn("fusion: {} -> {}: {}", attempt.from, attempt.to, check.reason);
-    }
+  for (const RendezvousOutcome& outcome : rendezvous_.checkDue(store_.snapshot(), version)) {
+    useRendezvousOutcome(outcome);
   }
-  pending_rendezvous_ = std::move(still_pending);
+}
+
+void FusionLoop::useRendezvousOutcome(const RendezvousOutcome& outcome) {
+  const MergeAttempt attempt = rendezvousAttempt(outcome);
+  node_.publishAttempt(attempt);
+  if (viewer_model_) {
+    viewer_model_->addAttempt(attempt);
+  }
+  const char* maps = outcome.on_final_maps ? "final maps" : "maps";
+  if (outcome.check.accepted) {
+    PairwiseEstimate estimate;
+    estimate.from = attempt.from;
+    estimate.to = attempt.to;
+    estimate.T_to_from = outcome.check.T_to_from;
+    estimate.verification = outcome.check.verification;
+    estimate.method = "rendezvous";
+    estimate.from_final_maps = outcome.on_final_maps;
+    changed_ = graph_.addVerified(estimate) || changed_;
+    spdlog::info("fusion: rendezvous {} -> {} verified by the {} (V {:.3f})", attempt.from,
+                 attempt.to, maps, outcome.check.verification);
+  } else if (outcome.was_verified) {
+    const bool withdrawn = graph_.withdraw(attempt.from, attempt.to, outcome.previous_T_to_from);
+    changed_ = withdrawn || changed_;
+    spdlog::warn("fusion: rendezvous {} -> {}, verified before, is refused by the grown {}: {}{}",
+                 attempt.from, attempt.to, maps, outcome.check.reason,
+                 withdrawn ? "; its placement is withdrawn" : "");
+  } else if (outcome.check.overlap_cells >= config_.rendezvous.min_overlap_cells) {
+    spdlog::warn("fusion: {} -> {}: {}", attempt.from, attempt.to, outcome.check.reason);
+  }
 }
 
 constexpr std::chrono::milliseconds kLoopPeriod{50};

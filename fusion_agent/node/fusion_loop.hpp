@@ -10,6 +10,7 @@
 #include "fusion_node.hpp"
 #include "live_viewer.hpp"
 #include "mrslam/fusion/merge_scheduler.hpp"
+#include "mrslam/fusion/rendezvous_tracker.hpp"
 #include "mrslam/fusion/team_graph.hpp"
 
 namespace mrslam::fusion {
@@ -33,9 +34,11 @@ class FusionLoop {
   void writeFiles();
   void publishAttempts();
   void finalMerges();
-  /// Checks the rendezvous received (and those waiting for maps) against the maps; a verified
-  /// one becomes a pairwise estimate of the team graph.
+  /// Checks the rendezvous received, and those held, against the maps when due
+  /// (rendezvous_tracker.hpp); a verified one becomes a pairwise estimate of the team graph.
   void checkRendezvous();
+  /// Publishes a check's attempt and updates the team graph with it.
+  void useRendezvousOutcome(const RendezvousOutcome& outcome);
 
   const FusionConfig& config_;
   RobotMapStore store_;
@@ -51,13 +54,7 @@ class FusionLoop {
   std::uint64_t offered_version_ = 0;
   bool changed_ = false;
   bool written_ = false;
-  /// Rendezvous waiting for both maps, or for maps that overlap enough, with the map versions
-  /// they were last checked against.
-  struct PendingRendezvous {
-    RendezvousHypothesis hypothesis;
-    std::uint64_t checked_at_version = 0;
-  };
-  std::vector<PendingRendezvous> pending_rendezvous_;
+  RendezvousTracker rendezvous_;  ///< held rendezvous, checked against the maps when due
 };
 
 }  // namespace mrslam::fusion

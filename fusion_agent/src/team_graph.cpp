@@ -167,6 +167,24 @@ bool TeamGraph::addVerified(const PairwiseEstimate& estimate) {
   return true;
 }
 
+bool TeamGraph::withdraw(const std::string& from, const std::string& to, const SE2& T_to_from) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const PairKey key = keyOf(from, to);
+  const auto found = edges_.find(key);
+  if (found == edges_.end() || found->second.configured) {
+    return false;
+  }
+  const SE2 held =
+      found->second.from == from ? found->second.T_to_from : found->second.T_to_from.inverse();
+  constexpr double kSame = 1e-9;  // the very estimate given, not merely a close one
+  const bool same = (held.translation() - T_to_from.translation()).norm() < kSame &&
+                    std::abs(wrapAngle(held.theta() - T_to_from.theta())) < kSame;
+  if (same) {
+    edges_.erase(found);
+  }
+  return same;
+}
+
 std::optional<PairwiseEstimate> TeamGraph::estimate(const std::string& from,
                                                     const std::string& to) const {
   std::lock_guard<std::mutex> lock(mutex_);

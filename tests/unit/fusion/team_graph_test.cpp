@@ -68,6 +68,22 @@ TEST(TeamGraphTest, AMergeOfFinalMapsReplacesEarlierOnesWhateverTheirV) {
   expectPose(graph.estimate("b", "a")->T_to_from, SE2(1.04, 0, 0));
 }
 
+TEST(TeamGraphTest, WithdrawsOnlyTheEstimateGivenAndNeverAConfiguredOne) {
+  TeamGraph graph;
+  const SE2 T_a_b(1.0, 2.0, 0.4);
+  ASSERT_TRUE(graph.addVerified(estimateOf("b", "a", T_a_b, 0.9)));
+  EXPECT_FALSE(graph.withdraw("b", "a", SE2(1.0, 2.0 + 1e-6, 0.4))) << "another estimate";
+  EXPECT_FALSE(graph.withdraw("b", "c", T_a_b)) << "another pair";
+  ASSERT_TRUE(graph.estimate("b", "a").has_value());
+  EXPECT_TRUE(graph.withdraw("a", "b", T_a_b.inverse())) << "the same one, named the other way";
+  EXPECT_FALSE(graph.estimate("b", "a").has_value());
+  EXPECT_FALSE(graph.place("a", {"b"})[0].placed) << "b is no longer placed";
+  EXPECT_FALSE(graph.withdraw("b", "a", T_a_b)) << "already gone";
+  graph.addConfigured("c", "a", SE2(0, 3, 0));
+  EXPECT_FALSE(graph.withdraw("c", "a", SE2(0, 3, 0)));
+  EXPECT_TRUE(graph.place("a", {"c"})[0].placed);
+}
+
 TEST(TeamGraphTest, PlacesThroughThePathWithTheLargestProductOfV) {
   TeamGraph graph;
   // a-b direct but weak (0.6); a-c-b strong (0.95 · 0.95 = 0.90).

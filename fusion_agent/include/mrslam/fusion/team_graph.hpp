@@ -75,6 +75,9 @@ class TeamGraph {
   /// best informed, whatever an earlier, smaller overlap's V), or one of the same kind with a
   /// higher V. Returns whether it was stored.
   bool addVerified(const PairwiseEstimate& estimate);
+  /// Removes the pair's estimate when it is the one given (T_to_from equal, not configured):
+  /// the maps no longer back it. Returns whether it was removed.
+  bool withdraw(const std::string& from, const std::string& to, const SE2& T_to_from);
 
   /// The stored estimate between two robots, expressed as T_to_from (inverted when stored the
   /// other way round).
