@@ -155,7 +155,7 @@ void FusionLoop::useRendezvousOutcome(const RendezvousOutcome& outcome) {
   if (viewer_model_) {
     viewer_model_->addAttempt(attempt);
   }
-  const char* maps = outcome.on_final_maps ? "final maps" : "maps";
+  const char* which_maps = outcome.on_final_maps ? "final" : "latest";
   if (outcome.check.accepted) {
     PairwiseEstimate estimate;
     estimate.from = attempt.from;
@@ -165,14 +165,16 @@ void FusionLoop::useRendezvousOutcome(const RendezvousOutcome& outcome) {
     estimate.method = "rendezvous";
     estimate.from_final_maps = outcome.on_final_maps;
     changed_ = graph_.addVerified(estimate) || changed_;
-    spdlog::info("fusion: rendezvous {} -> {} verified by the {} (V {:.3f})", attempt.from,
-                 attempt.to, maps, outcome.check.verification);
+    spdlog::info("fusion: rendezvous {} -> {} verified by the maps ({}; V {:.3f})", attempt.from,
+                 attempt.to, which_maps, outcome.check.verification);
   } else if (outcome.was_verified) {
     const bool withdrawn = graph_.withdraw(attempt.from, attempt.to, outcome.previous_T_to_from);
     changed_ = withdrawn || changed_;
-    spdlog::warn("fusion: rendezvous {} -> {}, verified before, is refused by the grown {}: {}{}",
-                 attempt.from, attempt.to, maps, outcome.check.reason,
-                 withdrawn ? "; its placement is withdrawn" : "");
+    spdlog::warn(
+        "fusion: rendezvous {} -> {}, verified before, is refused by the grown maps ({}): "
+        "{}{}",
+        attempt.from, attempt.to, which_maps, outcome.check.reason,
+        withdrawn ? "; its placement is withdrawn" : "");
   } else if (outcome.check.overlap_cells >= config_.rendezvous.min_overlap_cells) {
     spdlog::warn("fusion: {} -> {}: {}", attempt.from, attempt.to, outcome.check.reason);
   }
