@@ -7,12 +7,12 @@ namespace mrslam::fusion {
 
 namespace {
 
-bool isOfClass(std::int8_t value, CellClass cell_class, const SimilaritySettings& settings) {
+bool isOfClass(std::int8_t value, PsiClass cell_class, const SimilaritySettings& settings) {
   if (value < 0) {
     return false;  // unknown
   }
-  return cell_class == CellClass::kOccupied ? value >= settings.occupied_threshold
-                                            : value <= settings.free_threshold;
+  return cell_class == PsiClass::kOccupied ? value >= settings.occupied_threshold
+                                           : value <= settings.free_threshold;
 }
 
 // d(m1, m2, c): the mean distance, in `to`'s distance map, of `cells` mapped by `T`; the sum and
@@ -45,7 +45,7 @@ double meanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMap
 
 }  // namespace
 
-DistanceMap distanceMap(const GridMap& map, CellClass cell_class,
+DistanceMap distanceMap(const GridMap& map, PsiClass cell_class,
                         const SimilaritySettings& settings) {
   DistanceMap result;
   result.width = map.geometry.width;
@@ -87,13 +87,13 @@ DistanceMap distanceMap(const GridMap& map, CellClass cell_class,
 
 DissimilarityMap prepareDissimilarity(const GridMap& map, const SimilaritySettings& settings) {
   DissimilarityMap prepared;
-  prepared.occupied = distanceMap(map, CellClass::kOccupied, settings);
-  prepared.free = distanceMap(map, CellClass::kFree, settings);
+  prepared.occupied = distanceMap(map, PsiClass::kOccupied, settings);
+  prepared.free = distanceMap(map, PsiClass::kFree, settings);
   for (int y = 0; y < map.geometry.height; ++y) {
     for (int x = 0; x < map.geometry.width; ++x) {
-      if (isOfClass(map.at(x, y), CellClass::kOccupied, settings)) {
+      if (isOfClass(map.at(x, y), PsiClass::kOccupied, settings)) {
         prepared.occupied_cells.emplace_back(x, y);
-      } else if (isOfClass(map.at(x, y), CellClass::kFree, settings)) {
+      } else if (isOfClass(map.at(x, y), PsiClass::kFree, settings)) {
         prepared.free_cells.emplace_back(x, y);
       }
     }

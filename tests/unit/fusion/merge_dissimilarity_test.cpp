@@ -28,13 +28,13 @@ GridMap randomGrid(int width, int height, std::mt19937& random) {
   return map;
 }
 
-bool ofClass(std::int8_t value, CellClass cell_class, const SimilaritySettings& settings) {
-  return value >= 0 && (cell_class == CellClass::kOccupied ? value >= settings.occupied_threshold
-                                                           : value <= settings.free_threshold);
+bool ofClass(std::int8_t value, PsiClass cell_class, const SimilaritySettings& settings) {
+  return value >= 0 && (cell_class == PsiClass::kOccupied ? value >= settings.occupied_threshold
+                                                          : value <= settings.free_threshold);
 }
 
 // The Manhattan distance from (x, y) to the nearest cell of the class, by looking at all.
-std::int32_t bruteDistance(const GridMap& map, int x, int y, CellClass cell_class,
+std::int32_t bruteDistance(const GridMap& map, int x, int y, PsiClass cell_class,
                            const SimilaritySettings& settings) {
   std::int32_t best = DistanceMap::kFar;
   for (int v = 0; v < map.geometry.height; ++v) {
@@ -48,7 +48,7 @@ std::int32_t bruteDistance(const GridMap& map, int x, int y, CellClass cell_clas
 }
 
 // d(m1, m2, c) by brute force: every cell of class c of m1, mapped and rounded, inside m2.
-void bruteMean(const GridMap& m1, const GridMap& m2, const GridTransform& T, CellClass c,
+void bruteMean(const GridMap& m1, const GridMap& m2, const GridTransform& T, PsiClass c,
                const SimilaritySettings& settings, double& psi, bool& landed) {
   double sum = 0.0;
   long long count = 0;
@@ -80,7 +80,7 @@ TEST(MergeDissimilarityTest, DistanceMapsEqualTheBruteForceReference) {
   for (int trial = 0; trial < 20; ++trial) {
     const GridMap map = randomGrid(3 + static_cast<int>(random() % 14),
                                    3 + static_cast<int>(random() % 11), random);
-    for (const CellClass c : {CellClass::kOccupied, CellClass::kFree}) {
+    for (const PsiClass c : {PsiClass::kOccupied, PsiClass::kFree}) {
       const DistanceMap distances = distanceMap(map, c, settings);
       for (int y = 0; y < map.geometry.height; ++y) {
         for (int x = 0; x < map.geometry.width; ++x) {
@@ -104,7 +104,7 @@ TEST(MergeDissimilarityTest, PsiEqualsTheBruteForceReference) {
                                 std::uniform_real_distribution<double>(-3.0, 3.0)(random));
     double expected = 0.0;
     bool landed = false;
-    for (const CellClass c : {CellClass::kOccupied, CellClass::kFree}) {
+    for (const PsiClass c : {PsiClass::kOccupied, PsiClass::kFree}) {
       bruteMean(from, to, T, c, settings, expected, landed);
       bruteMean(to, from, T.inverse(), c, settings, expected, landed);
     }

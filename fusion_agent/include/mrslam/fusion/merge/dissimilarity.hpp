@@ -24,8 +24,9 @@
 
 namespace mrslam::fusion {
 
-/// Cell classes of the dissimilarity.
-enum class CellClass : std::uint8_t { kOccupied = 0, kFree = 1 };
+/// The two cell classes of the dissimilarity ψ. (overlap_score.hpp's CellClass has a third, kNone:
+/// two enums of one name in one namespace break the one-definition rule, as -flto reports.)
+enum class PsiClass : std::uint8_t { kOccupied = 0, kFree = 1 };
 
 /// Manhattan distances (cells) to the nearest cell of one class; kFar where there is none.
 struct DistanceMap {
@@ -40,7 +41,7 @@ struct DistanceMap {
 };
 
 /// Algorithm 1 of seed 002 for the cells of `cell_class` (thresholds of `settings`).
-DistanceMap distanceMap(const GridMap& map, CellClass cell_class,
+DistanceMap distanceMap(const GridMap& map, PsiClass cell_class,
                         const SimilaritySettings& settings);
 
 /// One map prepared for ψ: its distance maps and the cells of each class.
