@@ -62,7 +62,7 @@ struct ExhaustiveSearchSettings {
   int depth = 5;                     ///< the coarsest node covers 2^depth translations a side
   int search_hypotheses = 16;        ///< best distinct leaves kept by each way's search
   bool both_ways = true;             ///< search `to` onto `from` too
-  int hypotheses = 8;                ///< best distinct transforms returned (by the score both ways)
+  int hypotheses = 16;               ///< best distinct transforms returned (by the score both ways)
   double min_score_share = 0.02;     ///< least score of a hypothesis, share of the wall points
   double min_best_share = 0.4;       ///< least score of a hypothesis, share of the best's
   double distinct_cells = 8.0;       ///< hypotheses closer (map cells) ...
