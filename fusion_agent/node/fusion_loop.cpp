@@ -9,9 +9,8 @@ namespace mrslam::fusion {
 
 namespace {
 
-constexpr double kFlushTimeoutS = 5.0;
-constexpr std::size_t kMaxHeldRendezvous =
-    64;  // at the end: readers get this long to take the last map
+constexpr double kFlushTimeoutS = 5.0;  // at the end: readers get this long to take the last map
+constexpr std::size_t kMaxHeldRendezvous = 64;  // the oldest rendezvous beyond are dropped
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -175,7 +174,7 @@ void FusionLoop::useRendezvousOutcome(const RendezvousOutcome& outcome) {
         "{}{}",
         attempt.from, attempt.to, which_maps, outcome.check.reason,
         withdrawn ? "; its placement is withdrawn" : "");
-  } else if (outcome.check.overlap_cells >= config_.rendezvous.min_overlap_cells) {
+  } else if (!outcome.short_of_overlap) {
     spdlog::warn("fusion: {} -> {}: {}", attempt.from, attempt.to, outcome.check.reason);
   }
 }

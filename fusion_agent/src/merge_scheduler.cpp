@@ -12,6 +12,10 @@ std::size_t knownCellCount(const GridMap& map) {
   return known;
 }
 
+bool grewMaterially(std::size_t now_known, std::size_t then_known, double material_change) {
+  return static_cast<double>(now_known) > static_cast<double>(then_known) * (1.0 + material_change);
+}
+
 MergeScheduler::MergeScheduler(const MergeSchedulerSettings& settings, MergerFactory factory,
                                TeamGraph& graph)
     : settings_(settings), factory_(std::move(factory)), graph_(graph) {}
@@ -89,11 +93,8 @@ bool MergeScheduler::isDue(const PairState& state, const PairMaps& maps, bool pl
   if (now - state.last_attempt < std::chrono::duration<double>(settings_.min_interval_s)) {
     return false;
   }
-  const auto grew = [this](std::size_t now_known, std::size_t then_known) {
-    return static_cast<double>(now_known) >
-           static_cast<double>(then_known) * (1.0 + settings_.material_change);
-  };
-  return grew(maps.known_from, state.known_from) || grew(maps.known_to, state.known_to);
+  return grewMaterially(maps.known_from, state.known_from, settings_.material_change) ||
+         grewMaterially(maps.known_to, state.known_to, settings_.material_change);
 }
 
 std::vector<MergeAttempt> MergeScheduler::runDue(const std::vector<RobotMap>& maps,

@@ -43,11 +43,8 @@ bool RendezvousTracker::isDue(const Held& held, const MapsOfPair& maps,
   if (maps.both_final()) {
     return true;  // held verified ones are dropped after their check on the final maps
   }
-  const auto grew = [this](std::size_t now_known, std::size_t then_known) {
-    return static_cast<double>(now_known) >
-           static_cast<double>(then_known) * (1.0 + material_change_);
-  };
-  return grew(maps.known_from, held.known_from) || grew(maps.known_to, held.known_to);
+  return grewMaterially(maps.known_from, held.known_from, material_change_) ||
+         grewMaterially(maps.known_to, held.known_to, material_change_);
 }
 
 bool RendezvousTracker::check(Held& held, const MapsOfPair& maps, std::uint64_t version,
@@ -61,6 +58,7 @@ bool RendezvousTracker::check(Held& held, const MapsOfPair& maps, std::uint64_t 
   outcome.on_final_maps = maps.both_final();
   outcome.was_verified = held.verified;
   outcome.previous_T_to_from = held.T_to_from;
+  outcome.short_of_overlap = outcome.check.overlap_cells < settings_.min_overlap_cells;
   outcomes.push_back(outcome);
 
   held.checked_at_version = version;
@@ -73,8 +71,7 @@ bool RendezvousTracker::check(Held& held, const MapsOfPair& maps, std::uint64_t 
   }
   // Refused: a verified one is no longer backed by the maps; one short of overlap waits for the
   // maps to grow into each other, unless they are final.
-  const bool short_of_overlap = outcome.check.overlap_cells < settings_.min_overlap_cells;
-  return !held.verified && short_of_overlap && !outcome.on_final_maps;
+  return !held.verified && outcome.short_of_overlap && !outcome.on_final_maps;
 }
 
 std::vector<RendezvousOutcome> RendezvousTracker::checkDue(const std::vector<RobotMap>& maps,

@@ -92,5 +92,8 @@ class MergeScheduler {
 
 /// Known cells of a map (for the material-change rule).
 std::size_t knownCellCount(const GridMap& map);
+/// The material-change rule: a map's known cells grew by more than `material_change` (a fraction)
+/// since `then_known`.
+bool grewMaterially(std::size_t now_known, std::size_t then_known, double material_change);
 
 }  // namespace mrslam::fusion

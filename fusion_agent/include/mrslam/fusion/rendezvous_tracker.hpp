@@ -22,6 +22,9 @@ struct RendezvousOutcome {
   /// estimate is no longer backed by the maps).
   bool was_verified = false;
   SE2 previous_T_to_from;
+  /// Fewer known cells overlap than the check needs: a rendezvous not yet verified then waits
+  /// for the maps to grow (unless they are final).
+  bool short_of_overlap = false;
   double time_ms = 0.0;
 };
 
