@@ -9,8 +9,9 @@
 
 namespace mrslam::fusion {
 
-ChainMerger::ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps, ChainSettings settings)
-    : steps_(std::move(steps)), settings_(settings) {
+ChainMerger::ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps, ChainSettings settings,
+                         const SeedMergerSettings& judge)
+    : steps_(std::move(steps)), settings_(settings), judge_(judge) {
   if (steps_.empty()) {
     throw std::invalid_argument("a merge chain needs at least one step");
   }
@@ -20,9 +21,13 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
   std::string reasons;
   int trials = 0;
   MergeResult last;
+  std::vector<GridTransform> earlier;  // transforms earlier steps refused for a slide alone
   for (const auto& step : steps_) {
     MergeResult result = step->merge(from, to);
     trials += result.trials;
+    if (result.accepted && !earlier.empty()) {
+      judgeAgainstEarlier(from, to, earlier, result);
+    }
     if (result.accepted) {
       result.trials = trials;
       if (settings_.refine_psi) {
@@ -31,12 +36,29 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
       return result;
     }
     reasons += (reasons.empty() ? "" : "; ") + step->name() + ": " + result.reason;
+    if (settings_.slid_rivals && result.refusal == MergeRefusal::kTranslation) {
+      earlier.push_back(result.T_to_from);
+    }
     last = std::move(result);
   }
   last.method = name();
   last.trials = trials;
   last.reason = reasons;
   return last;
+}
+
+void ChainMerger::judgeAgainstEarlier(const GridMap& from, const GridMap& to,
+                                      const std::vector<GridTransform>& earlier,
+                                      MergeResult& result) {
+  const double share = judge_.rivalShareAgainst(from, to, result.T_to_from, earlier);
+  if (share > judge_.settings().max_rival_share) {
+    std::ostringstream shareText;
+    shareText.precision(3);
+    shareText << share;
+    result.accepted = false;
+    result.reason = "a transform an earlier step refused explains the overlap almost as well (" +
+                    shareText.str() + " of this one)";
+  }
 }
 
 namespace {

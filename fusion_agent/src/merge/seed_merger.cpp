@@ -226,6 +226,50 @@ MergeResult SeedMerger::judgeHypotheses(const GridMap& from, const GridMap& to,
   return result;
 }
 
+double SeedMerger::rivalShareAgainst(const GridMap& from, const GridMap& to,
+                                     const GridTransform& T_to_from,
+                                     const std::vector<GridTransform>& others) {
+  if (!inputRefusal(from, to).empty() || others.empty()) {
+    return 0.0;
+  }
+  const seed::SearchInputs inputs = searchInputs(from, to);
+  std::vector<seed::Candidate> facing = seed::searchCandidates(
+      {{T_to_from, 0.0, seed::Stage::kGiven}}, 1, inputs, tables_, settings_);
+  if (facing.empty()) {
+    return 0.0;
+  }
+  std::vector<seed::Hypothesis> given;
+  for (const GridTransform& other : others) {
+    given.push_back({other, -static_cast<double>(given.size()), seed::Stage::kGiven});
+  }
+  const std::vector<seed::Candidate> placed =
+      seed::searchCandidates(given, static_cast<int>(given.size()), inputs, tables_, settings_);
+  facing.insert(facing.end(), placed.begin(), placed.end());
+  for (int check = 0;; ++check) {
+    const double share = seed::rivalShare(facing, inputs, tables_, settings_);
+    const std::optional<std::size_t> rival = seed::rivalOf(facing, inputs, settings_);
+    if (share <= settings_.max_rival_share || check >= settings_.refined_rivals || !rival) {
+      return share;
+    }
+    const seed::Refined rival_refined =
+        seed::finalize(facing[*rival].T_to_from, inputs, tables_, settings_);
+    const double apart = (rival_refined.T_to_from.apply(inputs.pivot_from) -
+                          facing.front().T_to_from.apply(inputs.pivot_from))
+                             .norm();
+    if (apart > seed::kRivalCells) {
+      return share;
+    }
+    const GridTransform gone = facing[*rival].T_to_from;
+    facing.erase(std::remove_if(facing.begin() + 1, facing.end(),
+                                [&](const seed::Candidate& candidate) {
+                                  return samePlace(candidate.T_to_from, gone, inputs) ||
+                                         samePlace(candidate.T_to_from, rival_refined.T_to_from,
+                                                   inputs);
+                                }),
+                 facing.end());
+  }
+}
+
 void SeedMerger::addGlobalCandidates(std::vector<seed::Hypothesis> hypotheses, int count,
                                      seed::Stage stage, const seed::SearchInputs& inputs,
                                      std::vector<seed::Candidate>& candidates,
@@ -340,8 +384,10 @@ void SeedMerger::judge(const seed::Refined& refined, const seed::SearchInputs& i
   result.method = seed::stageName(refined.stage);
   result.verification = verificationIndex(refined.full);
   result.entropy = mergedEntropy(inputs.entropy_from, inputs.entropy_to, refined.full);
-  result.reason = refusal(refined);
-  result.accepted = result.reason.empty();
+  const Refusal refused = refusal(refined);
+  result.reason = refused.reason;
+  result.refusal = refused.kind;
+  result.accepted = refused.empty();
 }
 
 bool SeedMerger::smallOverlapDecisive(const seed::Refined& refined) const {
@@ -360,47 +406,51 @@ bool SeedMerger::translationFixed(const seed::Refined& refined) const {
          refined.similarity_ambiguity <= settings_.max_open_floor_ambiguity;
 }
 
-std::string SeedMerger::refusal(const seed::Refined& refined) const {
+SeedMerger::Refusal SeedMerger::refusal(const seed::Refined& refined) const {
   const long long overlap = refined.full.agreement + refined.full.disagreement;
   const double verification = verificationIndex(refined.full);
   if (overlap < settings_.min_overlap_cells && !smallOverlapDecisive(refined)) {
-    return "overlap of " + std::to_string(overlap) + " known cells is below " +
-           std::to_string(settings_.min_overlap_cells);
+    return {MergeRefusal::kOverlap, "overlap of " + std::to_string(overlap) +
+                                        " known cells is below " +
+                                        std::to_string(settings_.min_overlap_cells)};
   }
   if (verification < settings_.min_verification_v) {
-    return "verification index " + describe(verification) + " is below " +
-           describe(settings_.min_verification_v);
+    return {MergeRefusal::kVerification, "verification index " + describe(verification) +
+                                             " is below " + describe(settings_.min_verification_v)};
   }
   if (refined.stage == seed::Stage::kFineGlobalSearch &&
       verification < settings_.global_fine_min_verification) {
-    return "verification index " + describe(verification) +
-           " of a finer sweep's transform is below " +
-           describe(settings_.global_fine_min_verification);
+    return {MergeRefusal::kVerification, "verification index " + describe(verification) +
+                                             " of a finer sweep's transform is below " +
+                                             describe(settings_.global_fine_min_verification)};
   }
   if (refined.stage == seed::Stage::kFreeGlobalSearch &&
       verification < settings_.global_free_min_verification) {
-    return "verification index " + describe(verification) +
-           " of a transform found with free agreement is below " +
-           describe(settings_.global_free_min_verification);
+    return {MergeRefusal::kVerification, "verification index " + describe(verification) +
+                                             " of a transform found with free agreement is below " +
+                                             describe(settings_.global_free_min_verification)};
   }
   if (refined.structure < settings_.min_structure_agreement) {
-    return "only " + describe(refined.structure) + " of the overlapping walls meet walls (below " +
-           describe(settings_.min_structure_agreement) + ")";
+    return {MergeRefusal::kStructure, "only " + describe(refined.structure) +
+                                          " of the overlapping walls meet walls (below " +
+                                          describe(settings_.min_structure_agreement) + ")"};
   }
   if (refined.entropy_gap_cells > settings_.entropy_agreement_cells) {
-    return "the entropy minimum lies " + describe(refined.entropy_gap_cells) +
-           " cells from the best similarity";
+    return {MergeRefusal::kEntropy, "the entropy minimum lies " +
+                                        describe(refined.entropy_gap_cells) +
+                                        " cells from the best similarity"};
   }
   if (!translationFixed(refined)) {
-    return "the overlap does not fix the translation: a shift of " +
-           std::to_string(kRunnerUpCells) + " cells or more scores " +
-           describe(refined.translation_ambiguity) + " of the best";
+    return {MergeRefusal::kTranslation,
+            "the overlap does not fix the translation: a shift of " +
+                std::to_string(kRunnerUpCells) + " cells or more scores " +
+                describe(refined.translation_ambiguity) + " of the best"};
   }
   if (refined.rival_share > settings_.max_rival_share) {
-    return "another transform explains the overlap almost as well (" +
-           describe(refined.rival_share) + " of the best)";
+    return {MergeRefusal::kRival, "another transform explains the overlap almost as well (" +
+                                      describe(refined.rival_share) + " of the best)"};
   }
-  return "";
+  return {};
 }
 
 MergeResult judgeFoundHypotheses(SeedMerger& judge, const GridMap& from, const GridMap& to,

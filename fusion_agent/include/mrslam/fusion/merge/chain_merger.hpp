@@ -3,6 +3,10 @@
 // step is tried in turn until one accepts. The result is that step's, its `method` naming the
 // step ("virtual", "seed/global-search", ...); a refusal of the whole chain gives every step's
 // reason. Settings: `steps` (comma-separated merger names) and one section per step name.
+// With `slid_rivals`, a transform that an earlier step refused only because a slide along a
+// corridor scored almost as well faces a later step's accepted transform as a rival (block 9's
+// rival test, SeedMerger::rivalShareAgainst): the earlier step found the place, if not the exact
+// shift, and a transform elsewhere that explains the overlap no better is refused too.
 
 #include <cmath>
 #include <memory>
@@ -11,6 +15,7 @@
 
 #include "mrslam/common/config.hpp"
 #include "mrslam/fusion/merge/map_merger.hpp"
+#include "mrslam/fusion/merge/seed_merger.hpp"
 
 namespace mrslam::fusion {
 
@@ -20,17 +25,27 @@ struct ChainSettings {
   bool refine_psi = false;
   double max_refinement_cells = 2.0;         ///< largest shift of the refinement kept
   double max_refinement_rad = M_PI / 180.0;  ///< largest turn of the refinement kept
+  /// A transform an earlier step refused only because the overlap did not fix its translation
+  /// (MergeRefusal::kTranslation) faces a later step's accepted transform as a rival.
+  bool slid_rivals = true;
 };
 
 class ChainMerger : public MapMerger {
  public:
-  explicit ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps, ChainSettings settings = {});
+  /// `judge`: the acceptance that weighs a step's transform against earlier refused ones.
+  explicit ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps, ChainSettings settings = {},
+                       const SeedMergerSettings& judge = {});
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "chain"; }
 
  private:
+  /// Refuses the accepted `result` when one of the `earlier` refused transforms is its rival.
+  void judgeAgainstEarlier(const GridMap& from, const GridMap& to,
+                           const std::vector<GridTransform>& earlier, MergeResult& result);
+
   std::vector<std::unique_ptr<MapMerger>> steps_;
   ChainSettings settings_;
+  SeedMerger judge_;
 };
 
 /// Refines an accepted result by ψ (see ChainSettings); `method` gains "+psi" when it is kept.

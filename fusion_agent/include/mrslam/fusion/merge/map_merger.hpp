@@ -63,6 +63,18 @@ SE2 gridTransformToMetric(const GridTransform& T_to_from_cells, const GridGeomet
 GridTransform metricToGridTransform(const SE2& T_to_from, const GridGeometry& from,
                                     const GridGeometry& to);
 
+/// Which of block 9's tests refused a merge's transform (SeedMerger's acceptance, which the
+/// exhaustive and virtual-robot mergers share); kUnspecified when accepted or refused elsewhere.
+enum class MergeRefusal {
+  kUnspecified,
+  kOverlap,       ///< too few known cells in the overlap
+  kVerification,  ///< V below its bar
+  kStructure,     ///< overlapping walls do not meet walls
+  kEntropy,       ///< the entropy minimum lies away from the best similarity
+  kTranslation,   ///< the overlap does not fix the translation (a slide scores almost as well)
+  kRival,         ///< another transform elsewhere explains the overlap almost as well
+};
+
 /// What a merge found, or why it refused.
 struct MergeResult {
   bool accepted = false;
@@ -72,6 +84,8 @@ struct MergeResult {
   int trials = 0;             ///< segment pairs (or hypotheses) tried
   std::string method;         ///< the merger (or chain step) that produced the result
   std::string reason;         ///< why it refused; empty when accepted
+  /// When refused by block 9's acceptance: the test that refused T_to_from.
+  MergeRefusal refusal = MergeRefusal::kUnspecified;
 };
 
 class MapMerger {

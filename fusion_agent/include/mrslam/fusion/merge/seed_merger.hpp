@@ -210,6 +210,14 @@ class SeedMerger : public MapMerger {
   /// hypothesis a rival. `method` of the result is "seed/given".
   MergeResult judgeHypotheses(const GridMap& from, const GridMap& to,
                               const std::vector<GridTransform>& hypotheses);
+  /// Block 9's rival share of a transform facing `others` (transforms another step found): each
+  /// placed by the ±δ search, the rival chosen and weighed as among the seed's own candidates.
+  /// A rival that, refined, settles within kRivalCells of the transform is a copy slid along a
+  /// corridor and does not count (up to `refined_rivals` in turn); one that fails its own tests
+  /// still counts, as the caller passes only transforms that passed them where they were found.
+  /// Above max_rival_share, the transform would have been refused.
+  double rivalShareAgainst(const GridMap& from, const GridMap& to, const GridTransform& T_to_from,
+                           const std::vector<GridTransform>& others);
 
  private:
   /// Adds `more` to the ordered `candidates`; `refined` follows a new best and the rival share.
@@ -242,8 +250,14 @@ class SeedMerger : public MapMerger {
   /// Block 9: the result of a refined transform.
   void judge(const seed::Refined& refined, const seed::SearchInputs& inputs,
              MergeResult& result) const;
+  /// Which test refuses a transform, and why in words.
+  struct Refusal {
+    MergeRefusal kind = MergeRefusal::kUnspecified;
+    std::string reason;  ///< empty when accepted
+    bool empty() const { return reason.empty(); }
+  };
   /// Why a refined transform is refused; empty when it is accepted.
-  std::string refusal(const seed::Refined& refined) const;
+  Refusal refusal(const seed::Refined& refined) const;
   /// Whether an overlap below min_overlap_cells is still decisive (small_overlap_* bars).
   bool smallOverlapDecisive(const seed::Refined& refined) const;
   /// Whether the overlap fixes the translation (the ambiguity bars of block 9).
