@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "mrslam/fusion/merge/dissimilarity.hpp"
+#include "mrslam/fusion/merge/global_search.hpp"
 #include "mrslam/fusion/merge/random_walk.hpp"
 
 namespace mrslam::fusion {
@@ -27,6 +28,9 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
     trials += result.trials;
     if (result.accepted && !earlier.empty()) {
       judgeAgainstEarlier(from, to, earlier, result);
+    }
+    if (result.accepted && settings_.sweep_rivals) {
+      judgeAgainstSweep(from, to, result);
     }
     if (result.accepted) {
       result.trials = trials;
@@ -58,6 +62,29 @@ void ChainMerger::judgeAgainstEarlier(const GridMap& from, const GridMap& to,
     result.accepted = false;
     result.reason = "a transform an earlier step refused explains the overlap almost as well (" +
                     shareText.str() + " of this one)";
+  }
+}
+
+void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, MergeResult& result) {
+  if (!from.isValid() || !to.isValid() || from.cells.empty() || to.cells.empty()) {
+    return;  // nothing to sweep (no merger accepts such maps; the judge refuses them)
+  }
+  GlobalSearchSettings sweep;
+  sweep.rotation_step_rad = settings_.sweep_step_deg * M_PI / 180.0;
+  sweep.only_rotations_rad = {result.T_to_from.theta_rad};
+  sweep.peaks_per_rotation = settings_.sweep_peaks;
+  sweep.kept_hypotheses = settings_.sweep_peaks;
+  sweep.free_agreement_hypotheses = 0;
+  sweep.coarse_cells = settings_.sweep_coarse_cells;
+  std::vector<GridTransform> peaks;
+  for (const GlobalHypothesis& peak : globalSearch(from, to, sweep, judge_.settings().similarity)) {
+    peaks.push_back(peak.T_to_from);
+  }
+  if (judge_.cleanerRivalAmong(from, to, result.T_to_from, peaks)) {
+    result.accepted = false;
+    result.reason =
+        "a transform elsewhere at the same rotation explains the overlap more cleanly (a building "
+        "that repeats)";
   }
 }
 
@@ -93,6 +120,18 @@ void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& se
     result.verification = refined_v;
     result.method += "+psi";
   }
+}
+
+ChainSettings loadChainSettings(const Config& chain) {
+  ChainSettings s;
+  s.refine_psi = chain.getBool("refine_psi", s.refine_psi);
+  s.slid_rivals = chain.getBool("slid_rivals", s.slid_rivals);
+  s.sweep_rivals = chain.getBool("sweep_rivals", s.sweep_rivals);
+  s.sweep_step_deg = chain.getDouble("sweep_step_deg", s.sweep_step_deg, {0.1, 10.0});
+  s.sweep_peaks = static_cast<int>(chain.getInt("sweep_peaks", s.sweep_peaks, {1, 100}));
+  s.sweep_coarse_cells =
+      static_cast<int>(chain.getInt("sweep_coarse_cells", s.sweep_coarse_cells, {1, 16}));
+  return s;
 }
 
 std::vector<std::string> parseChainSteps(const std::string& steps) {

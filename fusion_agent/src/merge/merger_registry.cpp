@@ -32,12 +32,9 @@ std::unique_ptr<MapMerger> makeChain(const Config& chain, const Config* methods)
   } catch (const std::invalid_argument& error) {
     chain.fail("steps", error.what());
   }
-  ChainSettings settings;
-  settings.refine_psi = chain.getBool("refine_psi", settings.refine_psi);
-  settings.slid_rivals = chain.getBool("slid_rivals", settings.slid_rivals);
   const SeedMergerSettings judge =
       methods != nullptr ? loadSeedMergerSettings(methods->section("seed")) : SeedMergerSettings{};
-  return std::make_unique<ChainMerger>(std::move(steps), settings, judge);
+  return std::make_unique<ChainMerger>(std::move(steps), loadChainSettings(chain), judge);
 }
 
 /// The mergers whose hypotheses the seed pipeline's acceptance judges: their own settings and the

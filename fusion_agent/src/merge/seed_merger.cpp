@@ -233,18 +233,10 @@ double SeedMerger::rivalShareAgainst(const GridMap& from, const GridMap& to,
     return 0.0;
   }
   const seed::SearchInputs inputs = searchInputs(from, to);
-  std::vector<seed::Candidate> facing = seed::searchCandidates(
-      {{T_to_from, 0.0, seed::Stage::kGiven}}, 1, inputs, tables_, settings_);
+  std::vector<seed::Candidate> facing = placedFacing(T_to_from, others, inputs);
   if (facing.empty()) {
     return 0.0;
   }
-  std::vector<seed::Hypothesis> given;
-  for (const GridTransform& other : others) {
-    given.push_back({other, -static_cast<double>(given.size()), seed::Stage::kGiven});
-  }
-  const std::vector<seed::Candidate> placed =
-      seed::searchCandidates(given, static_cast<int>(given.size()), inputs, tables_, settings_);
-  facing.insert(facing.end(), placed.begin(), placed.end());
   for (int check = 0;; ++check) {
     const double share = seed::rivalShare(facing, inputs, tables_, settings_);
     const std::optional<std::size_t> rival = seed::rivalOf(facing, inputs, settings_);
@@ -268,6 +260,57 @@ double SeedMerger::rivalShareAgainst(const GridMap& from, const GridMap& to,
                                 }),
                  facing.end());
   }
+}
+
+bool SeedMerger::cleanerRivalAmong(const GridMap& from, const GridMap& to,
+                                   const GridTransform& T_to_from,
+                                   const std::vector<GridTransform>& others) {
+  if (!inputRefusal(from, to).empty() || others.empty()) {
+    return false;
+  }
+  const seed::SearchInputs inputs = searchInputs(from, to);
+  std::vector<seed::Candidate> facing = placedFacing(T_to_from, others, inputs);
+  for (int check = 0; !facing.empty() && check <= settings_.refined_rivals; ++check) {
+    const std::optional<std::size_t> rival = seed::cleanerRivalOf(facing, inputs, settings_);
+    if (!rival) {
+      return false;
+    }
+    const seed::Refined rival_refined =
+        seed::finalize(facing[*rival].T_to_from, inputs, tables_, settings_);
+    const double apart = (rival_refined.T_to_from.apply(inputs.pivot_from) -
+                          facing.front().T_to_from.apply(inputs.pivot_from))
+                             .norm();
+    if (!failsOnItsOwn(rival_refined) && apart > seed::kRivalCells) {
+      return true;
+    }
+    const GridTransform gone = facing[*rival].T_to_from;
+    facing.erase(std::remove_if(facing.begin() + 1, facing.end(),
+                                [&](const seed::Candidate& candidate) {
+                                  return samePlace(candidate.T_to_from, gone, inputs) ||
+                                         samePlace(candidate.T_to_from, rival_refined.T_to_from,
+                                                   inputs);
+                                }),
+                 facing.end());
+  }
+  return false;
+}
+
+std::vector<seed::Candidate> SeedMerger::placedFacing(const GridTransform& T_to_from,
+                                                      const std::vector<GridTransform>& others,
+                                                      const seed::SearchInputs& inputs) const {
+  std::vector<seed::Candidate> facing = seed::searchCandidates(
+      {{T_to_from, 0.0, seed::Stage::kGiven}}, 1, inputs, tables_, settings_);
+  if (facing.empty()) {
+    return facing;
+  }
+  std::vector<seed::Hypothesis> given;
+  for (const GridTransform& other : others) {
+    given.push_back({other, -static_cast<double>(given.size()), seed::Stage::kGiven});
+  }
+  const std::vector<seed::Candidate> placed =
+      seed::searchCandidates(given, static_cast<int>(given.size()), inputs, tables_, settings_);
+  facing.insert(facing.end(), placed.begin(), placed.end());
+  return facing;
 }
 
 void SeedMerger::addGlobalCandidates(std::vector<seed::Hypothesis> hypotheses, int count,

@@ -394,18 +394,28 @@ std::optional<std::size_t> rivalOf(const std::vector<Candidate>& candidates,
   return std::nullopt;
 }
 
-bool cleanerRival(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
-                  const SeedMergerSettings& settings) {
+std::optional<std::size_t> cleanerRivalOf(const std::vector<Candidate>& candidates,
+                                          const SearchInputs& inputs,
+                                          const SeedMergerSettings& settings) {
   if (candidates.empty() || settings.cleaner_rival_rate <= 0.0) {
-    return false;
+    return std::nullopt;
   }
   const Candidate& chosen = candidates.front();
   const Eigen::Vector2d centre = chosen.T_to_from.apply(inputs.pivot_from);
-  return std::any_of(candidates.begin() + 1, candidates.end(), [&](const Candidate& other) {
-    return meetsBars(other, settings) && other.structure >= chosen.structure &&
-           (other.T_to_from.apply(inputs.pivot_from) - centre).norm() > kRivalCells &&
-           other.disagreement_rate <= settings.cleaner_rival_rate * chosen.disagreement_rate;
-  });
+  for (std::size_t i = 1; i < candidates.size(); ++i) {
+    const Candidate& other = candidates[i];
+    if (meetsBars(other, settings) && other.structure >= chosen.structure &&
+        (other.T_to_from.apply(inputs.pivot_from) - centre).norm() > kRivalCells &&
+        other.disagreement_rate <= settings.cleaner_rival_rate * chosen.disagreement_rate) {
+      return i;
+    }
+  }
+  return std::nullopt;
+}
+
+bool cleanerRival(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
+                  const SeedMergerSettings& settings) {
+  return cleanerRivalOf(candidates, inputs, settings).has_value();
 }
 
 double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,

@@ -175,6 +175,11 @@ constexpr double kRivalCells = 10.0;
 bool cleanerRival(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
                   const SeedMergerSettings& settings);
 
+/// The index of the first cleaner rival (as cleanerRival()), if any.
+std::optional<std::size_t> cleanerRivalOf(const std::vector<Candidate>& candidates,
+                                          const SearchInputs& inputs,
+                                          const SeedMergerSettings& settings);
+
 /// The index of the candidate that rivalShare() compares with the first, if any.
 std::optional<std::size_t> rivalOf(const std::vector<Candidate>& candidates,
                                    const SearchInputs& inputs, const SeedMergerSettings& settings);

@@ -6,7 +6,9 @@
 // With `slid_rivals`, a transform that an earlier step refused only because a slide along a
 // corridor scored almost as well faces a later step's accepted transform as a rival (block 9's
 // rival test, SeedMerger::rivalShareAgainst): the earlier step found the place, if not the exact
-// shift, and a transform elsewhere that explains the overlap no better is refused too.
+// shift, and a transform elsewhere that explains the overlap no better is refused too. With
+// `sweep_rivals`, every translation at the accepted rotation is searched for a placement that
+// explains the overlap more cleanly (a building whose rooms repeat along a corridor).
 
 #include <cmath>
 #include <memory>
@@ -28,6 +30,13 @@ struct ChainSettings {
   /// A transform an earlier step refused only because the overlap did not fix its translation
   /// (MergeRefusal::kTranslation) faces a later step's accepted transform as a rival.
   bool slid_rivals = true;
+  /// An accepted transform is refused when a transform elsewhere at its rotation explains the
+  /// overlap more cleanly (SeedMerger::cleanerRivalAmong): found by the global search's sweep
+  /// (global_search.hpp) over all translations, within one step of the accepted rotation.
+  bool sweep_rivals = true;
+  double sweep_step_deg = 1.0;  ///< rotation step of that sweep, degrees
+  int sweep_peaks = 24;         ///< its best peaks, each placed by the ±δ search and weighed
+  int sweep_coarse_cells = 4;   ///< cells per coarse cell of the sweep
 };
 
 class ChainMerger : public MapMerger {
@@ -43,6 +52,10 @@ class ChainMerger : public MapMerger {
   void judgeAgainstEarlier(const GridMap& from, const GridMap& to,
                            const std::vector<GridTransform>& earlier, MergeResult& result);
 
+  /// With sweep_rivals: refuses the accepted `result` when a peak of the sweep at its rotation
+  /// is a cleaner rival.
+  void judgeAgainstSweep(const GridMap& from, const GridMap& to, MergeResult& result);
+
   std::vector<std::unique_ptr<MapMerger>> steps_;
   ChainSettings settings_;
   SeedMerger judge_;
@@ -51,6 +64,10 @@ class ChainMerger : public MapMerger {
 /// Refines an accepted result by ψ (see ChainSettings); `method` gains "+psi" when it is kept.
 void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,
                  MergeResult& result);
+
+/// Reads a `chain:` section's own keys (every key optional, defaults above); throws ConfigError
+/// for a bad value. The steps (`steps`) are read by the merger registry.
+ChainSettings loadChainSettings(const Config& chain);
 
 /// The default steps of a chain.
 constexpr const char* kDefaultChainSteps = "exhaustive,seed";

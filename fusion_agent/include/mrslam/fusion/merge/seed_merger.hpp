@@ -214,10 +214,16 @@ class SeedMerger : public MapMerger {
   /// placed by the ±δ search, the rival chosen and weighed as among the seed's own candidates.
   /// A rival that, refined, settles within kRivalCells of the transform is a copy slid along a
   /// corridor and does not count (up to `refined_rivals` in turn); one that fails its own tests
-  /// still counts, as the caller passes only transforms that passed them where they were found.
+  /// still counts, as the caller passes transforms that passed them where they were found.
   /// Above max_rival_share, the transform would have been refused.
   double rivalShareAgainst(const GridMap& from, const GridMap& to, const GridTransform& T_to_from,
                            const std::vector<GridTransform>& others);
+  /// Whether one of `others` (each placed by the ±δ search) is a cleaner rival of the transform
+  /// (`cleaner_rival_rate`: its walls meet walls as well and its known cells disagree at most
+  /// that share as often) that, refined, passes its own overlap, V, structure and entropy tests
+  /// more than kRivalCells away (up to `refined_rivals` candidates in turn).
+  bool cleanerRivalAmong(const GridMap& from, const GridMap& to, const GridTransform& T_to_from,
+                         const std::vector<GridTransform>& others);
 
  private:
   /// Adds `more` to the ordered `candidates`; `refined` follows a new best and the rival share.
@@ -237,6 +243,10 @@ class SeedMerger : public MapMerger {
   std::optional<seed::Refined> nextAcceptable(const std::vector<seed::Candidate>& candidates,
                                               const seed::SearchInputs& inputs,
                                               const seed::Refined& first) const;
+  /// `T_to_from` and then `others`, each placed by the ±δ search (empty when T_to_from is not).
+  std::vector<seed::Candidate> placedFacing(const GridTransform& T_to_from,
+                                            const std::vector<GridTransform>& others,
+                                            const seed::SearchInputs& inputs) const;
   /// Whether two transforms place the centre of `from`'s known cells within kRivalCells of each
   /// other at rotations within 5°.
   static bool samePlace(const GridTransform& a, const GridTransform& b,
