@@ -82,7 +82,11 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
   }
   if (settings_.wall_icp_iterations > 0) {
     inputs.nearest_wall_to = std::make_shared<const seed::NearestWall>(inputs.occupied_to);
-    inputs.occupied_from = seed::occupiedCells(inputs.all_samples, tables_);
+    inputs.occupied_from = seed::occupiedCells(
+        settings_.wall_icp_samples > 0
+            ? sampleKnownCells(inputs.all_samples, tables_, settings_.wall_icp_samples, 0)
+            : inputs.all_samples,
+        tables_);
   }
   inputs.occupied_to_samples =
       sampleKnownCells(inputs.occupied_to, tables_, settings_.search_occupied_samples, 0);

@@ -126,6 +126,8 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       section.getDouble("max_open_floor_ambiguity", settings.max_open_floor_ambiguity, {0.0, 1.0});
   settings.wall_icp_iterations = static_cast<int>(
       section.getInt("wall_icp_iterations", settings.wall_icp_iterations, {0, 1000}));
+  settings.wall_icp_samples = static_cast<int>(
+      section.getInt("wall_icp_samples", settings.wall_icp_samples, {0, 10000000}));
   settings.wall_icp_distance_cells =
       section.getDouble("wall_icp_distance_cells", settings.wall_icp_distance_cells, {0.5, 50.0});
   settings.radon_fallback = section.getBool("radon_fallback", settings.radon_fallback);

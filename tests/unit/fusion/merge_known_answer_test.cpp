@@ -56,8 +56,8 @@ TEST_P(MergeKnownAnswerTest, CropsOverlappingByHalfOrMoreMergeWithinTwoCellsAndO
   EXPECT_GE(tally.successes, tally.cases - 1) << tally.successes << " of " << tally.cases;
 }
 
-// The walls-onto-walls refinements (ICP in block 8, the two-way alignment after acceptance) take
-// accepted merges below the cell and the polish step.
+// The walls-onto-walls refinements (ICP in block 8 on an even sample of `wall_icp_samples` walls,
+// the two-way alignment after acceptance) take accepted merges below the cell and the polish step.
 TEST(MergeKnownAnswerPrecisionTest, AcceptedMergesLandWithinAFractionOfACell) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
   const GridMap map = loadShared("freiburg-intel.pgm");

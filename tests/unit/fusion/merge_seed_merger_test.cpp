@@ -68,7 +68,7 @@ TEST(MergeSeedMergerTest, SettingsReadThePapersSymbolsAndDegrees) {
       yaml("edge_merge_distance_dt: 5\nsegment_points_n: 40\nhistogram_spread_hd: 3.5\n"
            "max_turn_omega_c_deg: 90\ntranslation_window_delta: 9\nmin_verification_v: 0.8\n"
            "occupied_threshold: 70\nseed: 42\nradon_fallback: false\njudged_candidates: 5\n"
-           "wall_icp_iterations: 0\nwall_icp_distance_cells: 4.5\n"));
+           "wall_icp_iterations: 0\nwall_icp_distance_cells: 4.5\nwall_icp_samples: 500\n"));
   EXPECT_EQ(loaded.edges.edge_merge_distance_dt, 5);
   EXPECT_EQ(loaded.segments.segment_points_n, 40);
   EXPECT_DOUBLE_EQ(loaded.verification.histogram_spread_hd, 3.5);
@@ -82,6 +82,7 @@ TEST(MergeSeedMergerTest, SettingsReadThePapersSymbolsAndDegrees) {
   EXPECT_EQ(loaded.judged_candidates, 5);
   EXPECT_EQ(loaded.wall_icp_iterations, 0);
   EXPECT_DOUBLE_EQ(loaded.wall_icp_distance_cells, 4.5);
+  EXPECT_EQ(loaded.wall_icp_samples, 500);
 }
 
 TEST(MergeSeedMergerTest, SettingsErrorsNameTheFileLineAndKey) {
@@ -97,6 +98,7 @@ TEST(MergeSeedMergerTest, SettingsErrorsNameTheFileLineAndKey) {
   EXPECT_THROW(loadSeedMergerSettings(yaml("segment_points_n: 5\n")), ConfigError);
   EXPECT_THROW(loadSeedMergerSettings(yaml("judged_candidates: 0\n")), ConfigError);
   EXPECT_THROW(loadSeedMergerSettings(yaml("wall_icp_distance_cells: 0.1\n")), ConfigError);
+  EXPECT_THROW(loadSeedMergerSettings(yaml("wall_icp_samples: -1\n")), ConfigError);
 }
 
 TEST(MergeSeedMergerTest, RefusesEmptyInvalidAndMismatchedMaps) {
