@@ -54,10 +54,22 @@ const CropPair kSmallOverlaps[] = {{"carpin-LongRun6.txt",
                                     {{351, 345}, 164, 0.5975313427902904, {11, 6}, {25, 12}},
                                     {{202, 205}, 194, -1.699050956063579, {31, 38}, {29, 9}}}};
 
+// Overlaps of 400-900 known cells whose walls all meet walls, with no rival: case 21 of
+// `--seed 1` (ACES, 671 cells) and case 144 of `--seed 4` (LongRun6).
+const CropPair kSmallerOverlaps[] = {{"freiburg-aces.pgm",
+                                      21,
+                                      {{-156, 453}, 315, 0.7830764012238771, {7, 16}, {2, 18}},
+                                      {{-31, 713}, 182, -1.1218512253322546, {11, 32}, {21, 30}}},
+                                     {"carpin-LongRun6.txt",
+                                      144,
+                                      {{235, 369}, 185, 1.7574650862522843, {32, 40}, {15, 24}},
+                                      {{364, 468}, 187, 3.1324989295196843, {39, 10}, {22, 29}}}};
+
 TEST(MergeAcceptanceBarsTest, TheBarsAreReadAndRangeChecked) {
   const SeedMergerSettings defaults;
   EXPECT_DOUBLE_EQ(defaults.min_structure_agreement, 0.88);
   EXPECT_DOUBLE_EQ(defaults.small_overlap_structure, 0.98);
+  EXPECT_EQ(defaults.small_overlap_cells, 400);
   EXPECT_DOUBLE_EQ(defaults.cleaner_rival_rate, 0.5);
   const SeedMergerSettings loaded = loadSeedMergerSettings(
       Config::loadString("min_structure_agreement: 0.8\ncleaner_rival_rate: 0\n", "merge.yaml"));
@@ -122,6 +134,20 @@ TEST(MergeAcceptanceBarsTest, SmallOverlapsWhoseWallsMeetAtTheNewBarMerge) {
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
   for (const CropPair& pair : kSmallOverlaps) {
     merge_test::expectMergedWithinTwoCellsAndOneDegree(pair, *chain);
+  }
+}
+
+TEST(MergeAcceptanceBarsTest, SmallerOverlapsWhoseWallsAllMeetMergeAndTheBarDecides) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun6.txt");
+  const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
+  const std::unique_ptr<MapMerger> old_bar =
+      makeMergerFrom("chain", Config::loadString("seed: {small_overlap_cells: 900}\n", "m.yaml"));
+  for (const CropPair& pair : kSmallerOverlaps) {
+    merge_test::expectMergedWithinTwoCellsAndOneDegree(pair, *chain);
+    const MergeCase merge_case = cut(pair);
+    const MergeResult refused = old_bar->merge(merge_case.a, merge_case.b);
+    EXPECT_FALSE(refused.accepted) << "case " << pair.case_id << " at the old bar of 900 cells";
   }
 }
 

@@ -42,6 +42,13 @@ const CropPair kWideOverlapPair = {"carpin-robot3_cast.txt",
                                    {{-21, 43}, 274, -1.6900799518023857, {35, 39}, {3, 0}},
                                    {{125, 65}, 305, -0.043607860236702489, {16, 10}, {40, 23}}};
 
+// Case 101 of `--seed 6` (72 % overlap): the search's own score peaks 2.1 cells and 1.0° from the
+// truth (V 0.994), the judge's refined transform 1.5 cells and 0.7° from it (V 0.996).
+const CropPair kOwnPeakAside = {"carpin-robot2_cast.txt",
+                                101,
+                                {{180, 85}, 251, 2.217241296702662, {13, 35}, {29, 23}},
+                                {{402, 3}, 313, -1.260047483063953, {4, 13}, {0, 31}}};
+
 bool within(const MergeCase& merge_case, const GridTransform& T_b_a, double cells, double deg) {
   const CaseError error = caseError(merge_case, T_b_a);
   return error.distance_cells <= cells && error.angle_rad <= deg * M_PI / 180.0;
@@ -184,6 +191,26 @@ TEST(ExhaustiveMergerTest, MergesTurnedCropsOfAWholeBuildingOnLargerCells) {
   ASSERT_EQ(searchCellSize(merge_case.a, merge_case.b, {}), 4);
   ExhaustiveMerger merger;
   merge_test::expectMergedWithinTwoCellsAndOneDegree(pair, merger);
+}
+
+TEST(ExhaustiveMergerTest, ReturnsTheJudgesTransformUnlessToldToReturnItsOwnPeak) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
+  const MergeCase merge_case = cut(kOwnPeakAside);
+  ExhaustiveMergerSettings settings;
+  settings.search.hypotheses = 16;
+  ASSERT_FALSE(settings.return_own_peak);
+  ExhaustiveMerger judged(settings);
+  const MergeResult result = judged.merge(merge_case.a, merge_case.b);
+  ASSERT_TRUE(result.accepted) << result.reason;
+  EXPECT_TRUE(within(merge_case, result.T_to_from, 2.0, 1.0))
+      << caseError(merge_case, result.T_to_from).distance_cells << " cells";
+  settings.return_own_peak = true;
+  ExhaustiveMerger own_peak(settings);
+  const MergeResult peak = own_peak.merge(merge_case.a, merge_case.b);
+  ASSERT_TRUE(peak.accepted) << peak.reason;
+  EXPECT_FALSE(within(merge_case, peak.T_to_from, 2.0, 1.0)) << "the setting decides this case";
+  EXPECT_TRUE(loadExhaustiveMergerSettings(Config::loadString("return_own_peak: true\n", "x.yaml"))
+                  .return_own_peak);
 }
 
 TEST(ExhaustiveMergerTest, SettingsAreReadWithRangeChecks) {

@@ -32,7 +32,7 @@ struct ExhaustiveMergerSettings {
   double agreement_cells = 2.0;     ///< largest shift between the two ways' transforms, cells
   double agreement_deg = 1.0;       ///< largest turn between them, degrees
   bool check_own_score = true;      ///< the search's own score must peak at the accepted transform
-  bool return_own_peak = true;      ///< return that peak (it settles the angle of small overlaps)
+  bool return_own_peak = false;     ///< return that peak instead of the judge's transform
   double own_score_turn_deg = 4.0;  ///< ... looked for within this turn
   int own_score_shift_cells = 4;    ///< ... and this shift
   /// The peak turned by ±ambiguity_turn_deg (with its best shift within ±ambiguity_shift_cells)

@@ -140,7 +140,7 @@ struct SeedMergerSettings {
   int search_free_samples = 2500;       ///< ±δ search: free cells of `from` sampled
   double min_verification_v = 0.9;      ///< V threshold: least agr / (agr + dis)
   long long min_overlap_cells = 1500;   ///< least known cells in the overlap (agr + dis)
-  long long small_overlap_cells = 900;  ///< least overlap when walls all meet and no rival (0: off)
+  long long small_overlap_cells = 400;  ///< least overlap when walls all meet and no rival (0: off)
   double small_overlap_structure = 0.98;  ///< structure agreement that lets small_overlap_cells do
   double min_structure_agreement = 0.88;  ///< least share of walls landing on walls
   double entropy_agreement_cells = 1.5;   ///< largest gap best-similarity ↔ least-entropy
