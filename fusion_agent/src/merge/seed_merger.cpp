@@ -249,20 +249,10 @@ double SeedMerger::rivalShareAgainst(const GridMap& from, const GridMap& to,
     }
     const seed::Refined rival_refined =
         seed::finalize(facing[*rival].T_to_from, inputs, tables_, settings_);
-    const double apart = (rival_refined.T_to_from.apply(inputs.pivot_from) -
-                          facing.front().T_to_from.apply(inputs.pivot_from))
-                             .norm();
-    if (apart > seed::kRivalCells) {
+    if (settlesApart(rival_refined, facing.front(), inputs)) {
       return share;
     }
-    const GridTransform gone = facing[*rival].T_to_from;
-    facing.erase(std::remove_if(facing.begin() + 1, facing.end(),
-                                [&](const seed::Candidate& candidate) {
-                                  return samePlace(candidate.T_to_from, gone, inputs) ||
-                                         samePlace(candidate.T_to_from, rival_refined.T_to_from,
-                                                   inputs);
-                                }),
-                 facing.end());
+    dropRival(facing, *rival, rival_refined.T_to_from, inputs);
   }
 }
 
@@ -281,22 +271,29 @@ bool SeedMerger::cleanerRivalAmong(const GridMap& from, const GridMap& to,
     }
     const seed::Refined rival_refined =
         seed::finalize(facing[*rival].T_to_from, inputs, tables_, settings_);
-    const double apart = (rival_refined.T_to_from.apply(inputs.pivot_from) -
-                          facing.front().T_to_from.apply(inputs.pivot_from))
-                             .norm();
-    if (!failsOnItsOwn(rival_refined) && apart > seed::kRivalCells) {
+    if (!failsOnItsOwn(rival_refined) && settlesApart(rival_refined, facing.front(), inputs)) {
       return true;
     }
-    const GridTransform gone = facing[*rival].T_to_from;
-    facing.erase(std::remove_if(facing.begin() + 1, facing.end(),
-                                [&](const seed::Candidate& candidate) {
-                                  return samePlace(candidate.T_to_from, gone, inputs) ||
-                                         samePlace(candidate.T_to_from, rival_refined.T_to_from,
-                                                   inputs);
-                                }),
-                 facing.end());
+    dropRival(facing, *rival, rival_refined.T_to_from, inputs);
   }
   return false;
+}
+
+bool SeedMerger::settlesApart(const seed::Refined& rival, const seed::Candidate& chosen,
+                              const seed::SearchInputs& inputs) {
+  return (rival.T_to_from.apply(inputs.pivot_from) - chosen.T_to_from.apply(inputs.pivot_from))
+             .norm() > seed::kRivalCells;
+}
+
+void SeedMerger::dropRival(std::vector<seed::Candidate>& facing, std::size_t rival,
+                           const GridTransform& refined, const seed::SearchInputs& inputs) {
+  const GridTransform gone = facing[rival].T_to_from;
+  facing.erase(std::remove_if(facing.begin() + 1, facing.end(),
+                              [&](const seed::Candidate& candidate) {
+                                return samePlace(candidate.T_to_from, gone, inputs) ||
+                                       samePlace(candidate.T_to_from, refined, inputs);
+                              }),
+               facing.end());
 }
 
 std::vector<seed::Candidate> SeedMerger::placedFacing(const GridTransform& T_to_from,

@@ -183,15 +183,6 @@ TEST(MergeChainRivalsTest, TheSettingIsRead) {
                ConfigError);
 }
 
-}  // namespace
-}  // namespace mrslam::fusion
-
-namespace mrslam::fusion {
-namespace {
-
-using merge_test::CropPair;
-using merge_test::cut;
-
 // Case 60 of `--seed 5` (34 % overlap), another robot's map of the building of the wings above:
 // both chain steps place crop A 91 cells (4.5 m) along the building, at V 0.954, and neither
 // search proposes the truth (V 0.989 at its place, 0.011 of its known cells disagreeing).

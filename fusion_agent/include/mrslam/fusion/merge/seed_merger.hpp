@@ -249,6 +249,14 @@ class SeedMerger : public MapMerger {
   std::vector<seed::Candidate> placedFacing(const GridTransform& T_to_from,
                                             const std::vector<GridTransform>& others,
                                             const seed::SearchInputs& inputs) const;
+  /// Whether a refined rival places the centre of `from`'s known cells more than kRivalCells
+  /// from where the chosen candidate does (a copy slid along a corridor settles back onto it).
+  static bool settlesApart(const seed::Refined& rival, const seed::Candidate& chosen,
+                           const seed::SearchInputs& inputs);
+  /// Removes the `rival` of `facing` and every later candidate in the samePlace() as it, before
+  /// or after its refinement (`refined`): the other steps of the same slide.
+  static void dropRival(std::vector<seed::Candidate>& facing, std::size_t rival,
+                        const GridTransform& refined, const seed::SearchInputs& inputs);
   /// Whether two transforms place the centre of `from`'s known cells within kRivalCells of each
   /// other at rotations within 5°.
   static bool samePlace(const GridTransform& a, const GridTransform& b,
