@@ -66,9 +66,6 @@ void ChainMerger::judgeAgainstEarlier(const GridMap& from, const GridMap& to,
 }
 
 void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, MergeResult& result) {
-  if (!from.isValid() || !to.isValid() || from.cells.empty() || to.cells.empty()) {
-    return;  // nothing to sweep (no merger accepts such maps; the judge refuses them)
-  }
   GlobalSearchSettings sweep;
   sweep.rotation_step_rad = settings_.sweep_step_deg * M_PI / 180.0;
   sweep.only_rotations_rad = {result.T_to_from.theta_rad};

@@ -144,6 +144,9 @@ bool sweeps(double theta, const GlobalSearchSettings& settings) {
 std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& to,
                                            const GlobalSearchSettings& settings,
                                            const SimilaritySettings& classes) {
+  if (!from.isValid() || !to.isValid() || from.cells.empty() || to.cells.empty()) {
+    return {};  // nothing to coarsen
+  }
   const int coarse = std::max(1, settings.coarse_cells);
   const CoarseMap coarse_from = coarsen(from, coarse, classes);
   const CoarseMap coarse_to = coarsen(to, coarse, classes);

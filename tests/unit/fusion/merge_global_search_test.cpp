@@ -78,6 +78,7 @@ TEST(MergeGlobalSearchTest, NoHypothesisWithoutWalls) {
   const GridMap free_only(geometry, GridMap::kFree);
   const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/carpin-intel.txt"));
   EXPECT_TRUE(globalSearch(free_only, map, GlobalSearchSettings{}, SimilaritySettings{}).empty());
+  EXPECT_TRUE(globalSearch(GridMap(), map, GlobalSearchSettings{}, SimilaritySettings{}).empty());
 }
 
 TEST(MergeGlobalSearchTest, SettingsComeFromTheSeedSection) {

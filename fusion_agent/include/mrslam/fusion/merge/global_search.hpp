@@ -55,7 +55,7 @@ struct GlobalHypothesis {
 };
 
 /// Steps 1-5: the best coarse transforms of `from` onto `to` by s, best first, then those by s_f,
-/// best first (empty when either map has no occupied cell).
+/// best first (empty when either map is empty or has no occupied cell).
 std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& to,
                                            const GlobalSearchSettings& settings,
                                            const SimilaritySettings& classes);

@@ -159,13 +159,12 @@ struct SeedMergerSettings {
                            ///< dropped when they fail on their own or settle on the candidate
   int wall_icp_iterations = 30;          ///< final refinement: ICP of walls onto walls (0: off)
   double wall_icp_distance_cells = 3.0;  ///< final refinement: farthest wall matched
-  int wall_icp_samples =
-      3000;  ///< final refinement: `from`'s walls matched, an even sample (0: all)
-  bool radon_fallback = true;     ///< try global Radon rotations when segments fail
-  int fallback_rotations = 4;     ///< fallback: Radon peaks tried (× 2 half turns)
-  int fallback_translations = 4;  ///< fallback: correlation peaks per rotation
-  bool global_search = true;      ///< try the global search when all else is refused
-  GlobalSearchSettings global;    ///< step 10 (global_search.hpp)
+  int wall_icp_samples = 3000;           ///< final refinement: `from`'s walls matched (0: all)
+  bool radon_fallback = true;            ///< try global Radon rotations when segments fail
+  int fallback_rotations = 4;            ///< fallback: Radon peaks tried (× 2 half turns)
+  int fallback_translations = 4;         ///< fallback: correlation peaks per rotation
+  bool global_search = true;             ///< try the global search when all else is refused
+  GlobalSearchSettings global;           ///< step 10 (global_search.hpp)
   double global_polish_step_rad = 0.5 * M_PI / 180.0;  ///< step 10: rotation step of the refinement
   int global_candidates = 6;  ///< step 10: refined hypotheses given the ±δ search
   int global_fine_cells = 2;  ///< finer sweep near step 10's rotations: coarse cells (0: off)
