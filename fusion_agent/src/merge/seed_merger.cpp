@@ -407,8 +407,7 @@ bool SeedMerger::failsOnItsOwn(const seed::Refined& refined) const {
   const long long overlap = refined.full.agreement + refined.full.disagreement;
   return (overlap < settings_.min_overlap_cells && !smallOverlapDecisive(refined)) ||
          verificationIndex(refined.full) < settings_.min_verification_v ||
-         refined.structure < settings_.min_structure_agreement ||
-         refined.entropy_gap_cells > settings_.entropy_agreement_cells;
+         refined.structure < settings_.min_structure_agreement || entropyDisagrees(refined);
 }
 
 seed::Refined SeedMerger::refineBest(const std::vector<seed::Candidate>& candidates,
@@ -446,8 +445,20 @@ bool SeedMerger::translationFixed(const seed::Refined& refined) const {
     return true;
   }
   // Walls that clearly pin the shift outweigh open floor that slides along a corridor.
+  return (refined.wall_ambiguity <= settings_.decisive_wall_ambiguity &&
+          refined.similarity_ambiguity <= settings_.max_open_floor_ambiguity) ||
+         wallsOutweighFloor(refined);
+}
+
+bool SeedMerger::wallsOutweighFloor(const seed::Refined& refined) const {
   return refined.wall_ambiguity <= settings_.decisive_wall_ambiguity &&
-         refined.similarity_ambiguity <= settings_.max_open_floor_ambiguity;
+         refined.wall_margin >= settings_.decisive_wall_margin &&
+         verificationIndex(refined.full) >= settings_.walls_over_floor_min_v;
+}
+
+bool SeedMerger::entropyDisagrees(const seed::Refined& refined) const {
+  return refined.entropy_gap_cells > settings_.entropy_agreement_cells &&
+         !wallsOutweighFloor(refined);
 }
 
 SeedMerger::Refusal SeedMerger::refusal(const seed::Refined& refined) const {
@@ -479,7 +490,7 @@ SeedMerger::Refusal SeedMerger::refusal(const seed::Refined& refined) const {
                                           " of the overlapping walls meet walls (below " +
                                           describe(settings_.min_structure_agreement) + ")"};
   }
-  if (refined.entropy_gap_cells > settings_.entropy_agreement_cells) {
+  if (entropyDisagrees(refined)) {
     return {MergeRefusal::kEntropy, "the entropy minimum lies " +
                                         describe(refined.entropy_gap_cells) +
                                         " cells from the best similarity"};
@@ -488,7 +499,10 @@ SeedMerger::Refusal SeedMerger::refusal(const seed::Refined& refined) const {
     return {MergeRefusal::kTranslation,
             "the overlap does not fix the translation: a shift of " +
                 std::to_string(kRunnerUpCells) + " cells or more scores " +
-                describe(refined.translation_ambiguity) + " of the best"};
+                describe(refined.translation_ambiguity) + " of the best (walls " +
+                describe(refined.wall_ambiguity) + ", ahead by " +
+                std::to_string(refined.wall_margin) + " sampled walls; agr - dis " +
+                describe(refined.similarity_ambiguity) + ")"};
   }
   if (refined.rival_share > settings_.max_rival_share) {
     return {MergeRefusal::kRival, "another transform explains the overlap almost as well (" +

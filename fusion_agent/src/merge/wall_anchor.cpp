@@ -145,6 +145,7 @@ Refined settleOnWalls(const GridTransform& T_to_from, const SearchInputs& inputs
   refined.similarity_ambiguity =
       best > 0 ? static_cast<double>(coarse.runner_up_similarity) / static_cast<double>(best) : 1.0;
   refined.translation_ambiguity = std::max(refined.wall_ambiguity, refined.similarity_ambiguity);
+  refined.wall_margin = walls.best_balance - walls.runner_up_balance;
   return refined;
 }
 

@@ -79,6 +79,9 @@
 // `min_overlap_cells` rank after the others and are no rival. The translation also counts as
 // fixed when the wall balance's runner-up share is at most `decisive_wall_ambiguity` and agr -
 // dis's at most `max_open_floor_ambiguity` (open floor slides along a corridor, walls do not).
+// At V ≥ `walls_over_floor_min_v`, walls that fix the shift and lead their runner-up by
+// `decisive_wall_margin` sampled walls fix it however flat agr - dis is, and the entropy test is
+// waived: over open floor bounded by the maps' edges its minimum drifts to more overlap.
 // An overlap of `small_overlap_cells` suffices when the structure agreement is at least
 // `small_overlap_structure` and no rival exists. When the best candidate is refused, the next
 // `judged_candidates` are judged in turn, each facing the others as rivals; one refused for its
@@ -147,7 +150,12 @@ struct SeedMergerSettings {
   double max_translation_ambiguity = 0.95;  ///< largest runner-up / best agr - dis in ±δ
   double decisive_wall_ambiguity = 0.85;    ///< walls fix the shift: wall runner-up share ≤ this
   double max_open_floor_ambiguity = 0.975;  ///< agr - dis runner-up bar when walls fix the shift
-  double max_rival_share = 0.93;            ///< largest agr - dis of a rival transform / best
+  /// Walls outweigh open floor: at V ≥ this, walls that fix the shift (decisive_wall_ambiguity,
+  /// decisive_wall_margin) fix it however flat agr - dis is, and the entropy test is waived (> 1:
+  /// off).
+  double walls_over_floor_min_v = 0.96;
+  long long decisive_wall_margin = 45;  ///< ... and the best wall balance leads by this many walls
+  double max_rival_share = 0.93;        ///< largest agr - dis of a rival transform / best
   /// A rival whose walls meet walls as well and whose known cells disagree at most this share as
   /// often as the best's refuses the best, as a rival of share 1 (0: off).
   double cleaner_rival_rate = 0.5;
@@ -281,6 +289,10 @@ class SeedMerger : public MapMerger {
   bool smallOverlapDecisive(const seed::Refined& refined) const;
   /// Whether the overlap fixes the translation (the ambiguity bars of block 9).
   bool translationFixed(const seed::Refined& refined) const;
+  /// Whether decisive walls at a high V outweigh flat open floor (walls_over_floor_min_v).
+  bool wallsOutweighFloor(const seed::Refined& refined) const;
+  /// Whether the least merged entropy lies too far from the best similarity to accept.
+  bool entropyDisagrees(const seed::Refined& refined) const;
   seed::SearchInputs searchInputs(const GridMap& from, const GridMap& to) const;
 
   const SeedMergerSettings settings_;
