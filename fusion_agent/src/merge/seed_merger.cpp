@@ -445,9 +445,9 @@ bool SeedMerger::translationFixed(const seed::Refined& refined) const {
     return true;
   }
   // Walls that clearly pin the shift outweigh open floor that slides along a corridor.
-  return (refined.wall_ambiguity <= settings_.decisive_wall_ambiguity &&
-          refined.similarity_ambiguity <= settings_.max_open_floor_ambiguity) ||
-         wallsOutweighFloor(refined);
+  return refined.wall_ambiguity <= settings_.decisive_wall_ambiguity &&
+         (refined.similarity_ambiguity <= settings_.max_open_floor_ambiguity ||
+          wallsOutweighFloor(refined));
 }
 
 bool SeedMerger::wallsOutweighFloor(const seed::Refined& refined) const {

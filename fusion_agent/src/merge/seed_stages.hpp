@@ -199,8 +199,8 @@ struct Refined {
   double translation_ambiguity = 1.0;  ///< runner-up / best agr - dis within ±δ
   double wall_ambiguity = 1.0;         ///< the wall balance's runner-up share (wall_anchor)
   double similarity_ambiguity = 1.0;   ///< agr - dis's runner-up share (wall_anchor)
-  long long wall_margin = 0;  ///< the wall balance's lead over its runner-up (sampled walls)
-  double rival_share = 0.0;   ///< rivalShare() of the candidates
+  long long wall_margin = 0;           ///< the wall balance's lead over its runner-up (wall_anchor)
+  double rival_share = 0.0;            ///< rivalShare() of the candidates
 };
 
 /// Rotation polish (step 7 of seed_merger.hpp), block 8 again at the polished angle, then ±1 cell

@@ -144,8 +144,8 @@ TEST(MergeAcceptanceBarsTest, SmallerOverlapsWhoseWallsAllMeetMergeAndTheBarDeci
   const std::unique_ptr<MapMerger> old_bar =
       makeMergerFrom("chain", Config::loadString("seed: {small_overlap_cells: 900}\n", "m.yaml"));
   for (const CropPair& pair : kSmallerOverlaps) {
-    merge_test::expectMergedWithinTwoCellsAndOneDegree(pair, *chain);
     const MergeCase merge_case = cut(pair);
+    merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
     const MergeResult refused = old_bar->merge(merge_case.a, merge_case.b);
     EXPECT_FALSE(refused.accepted) << "case " << pair.case_id << " at the old bar of 900 cells";
   }

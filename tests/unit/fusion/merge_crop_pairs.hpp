@@ -29,25 +29,34 @@ inline MergeCase cut(const CropPair& pair) {
   return merge_case;
 }
 
-/// Merges the pair's crops with `merger`, expecting an accepted transform within 2 cells and 1°
-/// of the truth; returns the result for further checks.
-inline MergeResult expectMergedWithinTwoCellsAndOneDegree(const CropPair& pair, MapMerger& merger) {
-  const MergeCase merge_case = cut(pair);
+/// Merges a case's crops with `merger`, expecting an accepted transform within 2 cells and 1° of
+/// the truth; returns the result for further checks.
+inline MergeResult expectMergedWithinTwoCellsAndOneDegree(const MergeCase& merge_case,
+                                                          MapMerger& merger) {
   const MergeResult result = merger.merge(merge_case.a, merge_case.b);
   const CaseError error = caseError(merge_case, result.T_to_from);
-  EXPECT_TRUE(result.accepted) << "case " << pair.case_id << ": " << result.reason;
-  EXPECT_TRUE(isCorrect(error)) << "case " << pair.case_id << ": " << error.distance_cells
+  EXPECT_TRUE(result.accepted) << "case " << merge_case.id << ": " << result.reason;
+  EXPECT_TRUE(isCorrect(error)) << "case " << merge_case.id << ": " << error.distance_cells
                                 << " cells, " << error.angle_rad * 180.0 / M_PI << "°";
   return result;
 }
 
-/// Merges the pair's crops with `merger`, expecting no accepted transform but a correct one.
-inline void expectNoWrongAccept(const CropPair& pair, MapMerger& merger) {
-  const MergeCase merge_case = cut(pair);
+/// The same for a pair's crops.
+inline MergeResult expectMergedWithinTwoCellsAndOneDegree(const CropPair& pair, MapMerger& merger) {
+  return expectMergedWithinTwoCellsAndOneDegree(cut(pair), merger);
+}
+
+/// Merges a case's crops with `merger`, expecting no accepted transform but a correct one.
+inline void expectNoWrongAccept(const MergeCase& merge_case, MapMerger& merger) {
   const MergeResult result = merger.merge(merge_case.a, merge_case.b);
   if (result.accepted) {
-    EXPECT_TRUE(isCorrect(caseError(merge_case, result.T_to_from))) << "case " << pair.case_id;
+    EXPECT_TRUE(isCorrect(caseError(merge_case, result.T_to_from))) << "case " << merge_case.id;
   }
+}
+
+/// The same for a pair's crops.
+inline void expectNoWrongAccept(const CropPair& pair, MapMerger& merger) {
+  expectNoWrongAccept(cut(pair), merger);
 }
 
 }  // namespace mrslam::fusion::merge_test
