@@ -6,9 +6,44 @@
 
 #include "mrslam/fusion/merge/dissimilarity.hpp"
 #include "mrslam/fusion/merge/global_search.hpp"
+#include "mrslam/fusion/merge/overlap_score.hpp"
 #include "mrslam/fusion/merge/random_walk.hpp"
 
 namespace mrslam::fusion {
+
+namespace {
+
+// 1 - V over the overlap; 1 with no overlap.
+double disagreementRate(const OverlapScore& overlap) {
+  return overlap.overlap() == 0 ? 1.0 : 1.0 - overlap.verification();
+}
+
+// Whether two transforms put `pivot` (a cell of `from`) within `cells` of each other.
+bool landsWithin(const GridTransform& T_a, const GridTransform& T_b, const Eigen::Vector2d& pivot,
+                 double cells) {
+  return (T_a.apply(pivot) - T_b.apply(pivot)).norm() <= cells;
+}
+
+void refuseForAlternative(const Eigen::Vector2d& pivot, const MergeResult& alternative,
+                          double ratio, MergeResult& result) {
+  const GridTransform& T_alternative = alternative.T_to_from;
+  std::ostringstream reason;
+  reason.precision(3);
+  reason << "another placement, "
+         << (T_alternative.apply(pivot) - result.T_to_from.apply(pivot)).norm() << " cells and "
+         << std::abs(wrapAngle(T_alternative.theta_rad - result.T_to_from.theta_rad)) * 180.0 / M_PI
+         << " degrees away, "
+         << (alternative.accepted
+                 ? std::string("passes every test on its own")
+                 : "fails on its own only for its exact shift (" + alternative.reason + ")")
+         << ", and its known cells disagree " << ratio
+         << " times as often (a building that looks alike turned)";
+  result.accepted = false;
+  result.refusal = MergeRefusal::kRival;
+  result.reason = reason.str();
+}
+
+}  // namespace
 
 ChainMerger::ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps, ChainSettings settings,
                          const SeedMergerSettings& judge)
@@ -22,15 +57,21 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
   std::string reasons;
   int trials = 0;
   MergeResult last;
-  std::vector<GridTransform> earlier;  // transforms earlier steps refused for a slide alone
+  std::vector<GridTransform> earlier;   // transforms earlier steps refused for a slide alone
+  std::vector<GridTransform> searched;  // every step's search hypotheses so far
   for (const auto& step : steps_) {
     MergeResult result = step->merge(from, to);
     trials += result.trials;
+    searched.insert(searched.end(), result.hypotheses.begin(), result.hypotheses.end());
     if (result.accepted && !earlier.empty()) {
       judgeAgainstEarlier(from, to, earlier, result);
     }
     if (result.accepted && settings_.sweep_rivals) {
       judgeAgainstSweep(from, to, result);
+    }
+    if (result.accepted &&
+        (settings_.cleaner_alternative_rate > 0.0 || settings_.slid_alternative_rate > 0.0)) {
+      judgeAgainstAlternatives(from, to, searched, result);
     }
     if (result.accepted) {
       result.trials = trials;
@@ -85,6 +126,49 @@ void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, Merg
   }
 }
 
+double ChainMerger::alternativeRateBar(const MergeResult& alone) const {
+  if (alone.accepted) {
+    return settings_.cleaner_alternative_rate;
+  }
+  const bool slid =
+      alone.refusal == MergeRefusal::kEntropy || alone.refusal == MergeRefusal::kTranslation;
+  return slid ? settings_.slid_alternative_rate : 0.0;
+}
+
+void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
+                                           const std::vector<GridTransform>& searched,
+                                           MergeResult& result) {
+  const Eigen::Vector2d pivot = knownCentroid(from);
+  const double rate = disagreementRate(scoreOverlap(from, to, result.T_to_from));
+  if (rate <= 0.0) {
+    return;  // no placement fits more cleanly than one without a single disagreement
+  }
+  std::vector<GridTransform> judged;  // hypotheses judged on their own, and where they settled
+  for (const GridTransform& hypothesis : searched) {
+    const bool seen = std::any_of(judged.begin(), judged.end(), [&](const GridTransform& T) {
+      return landsWithin(T, hypothesis, pivot, settings_.alternative_cells);
+    });
+    if (seen || landsWithin(result.T_to_from, hypothesis, pivot, settings_.alternative_cells) ||
+        disagreementRate(scoreOverlap(from, to, hypothesis)) >
+            settings_.alternative_prefilter_rate * rate) {
+      continue;
+    }
+    const MergeResult alone = judge_.judgeHypotheses(from, to, {hypothesis});
+    judged.push_back(hypothesis);
+    judged.push_back(alone.T_to_from);
+    const double bar = alternativeRateBar(alone);
+    if (bar <= 0.0 ||
+        landsWithin(result.T_to_from, alone.T_to_from, pivot, settings_.alternative_cells)) {
+      continue;
+    }
+    const double ratio = disagreementRate(scoreOverlap(from, to, alone.T_to_from)) / rate;
+    if (ratio <= bar) {
+      refuseForAlternative(pivot, alone, ratio, result);
+      return;
+    }
+  }
+}
+
 namespace {
 
 double verificationAt(const GridMap& from, const CodeImage& to, const GridTransform& T_to_from,
@@ -128,6 +212,13 @@ ChainSettings loadChainSettings(const Config& chain) {
   s.sweep_peaks = static_cast<int>(chain.getInt("sweep_peaks", s.sweep_peaks, {1, 100}));
   s.sweep_coarse_cells =
       static_cast<int>(chain.getInt("sweep_coarse_cells", s.sweep_coarse_cells, {1, 16}));
+  s.cleaner_alternative_rate =
+      chain.getDouble("cleaner_alternative_rate", s.cleaner_alternative_rate, {0.0, 10.0});
+  s.slid_alternative_rate =
+      chain.getDouble("slid_alternative_rate", s.slid_alternative_rate, {0.0, 10.0});
+  s.alternative_cells = chain.getDouble("alternative_cells", s.alternative_cells, {0.0, 1000.0});
+  s.alternative_prefilter_rate =
+      chain.getDouble("alternative_prefilter_rate", s.alternative_prefilter_rate, {0.0, 100.0});
   return s;
 }
 

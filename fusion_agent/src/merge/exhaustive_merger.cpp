@@ -85,6 +85,7 @@ MergeResult ExhaustiveMerger::merge(const GridMap& from, const GridMap& to) {
   const ExhaustiveScore score(from, to, settings_.search, classes_);
   const std::vector<GridTransform> found = hypotheses(from, to, score);
   MergeResult result = judgeFoundHypotheses(judge_, from, to, found, name(), "exhaustive search");
+  result.hypotheses = found;
   if (!result.accepted) {
     return result;
   }

@@ -121,12 +121,20 @@ TEST(MergeAcceptanceBarsTest, AHallTurnedByAHalfIsRefusedForItsCleanerRival) {
       EXPECT_TRUE(isCorrect(caseError(merge_case, result.T_to_from))) << method;
     }
   }
-  // Without the cleaner rival the chain takes the half turn: the rule decides this case.
-  const std::unique_ptr<MapMerger> without =
-      makeMergerFrom("chain", Config::loadString("seed:\n  cleaner_rival_rate: 0\n", "merge.yaml"));
+  // Without the cleaner rival and the chain's cleaner alternatives the chain takes the half turn:
+  // either rule alone decides this case.
+  const std::unique_ptr<MapMerger> without = makeMergerFrom(
+      "chain",
+      Config::loadString("seed:\n  cleaner_rival_rate: 0\nchain:\n  cleaner_alternative_rate: 0\n",
+                         "merge.yaml"));
   const MergeResult turned = without->merge(merge_case.a, merge_case.b);
   ASSERT_TRUE(turned.accepted) << turned.reason;
   EXPECT_GT(caseError(merge_case, turned.T_to_from).angle_rad, 170.0 * M_PI / 180.0);
+  const std::unique_ptr<MapMerger> alternatives_only =
+      makeMergerFrom("chain", Config::loadString("seed:\n  cleaner_rival_rate: 0\n", "merge.yaml"));
+  const MergeResult weighed = alternatives_only->merge(merge_case.a, merge_case.b);
+  EXPECT_FALSE(weighed.accepted);
+  EXPECT_NE(weighed.reason.find("another placement"), std::string::npos) << weighed.reason;
 }
 
 TEST(MergeAcceptanceBarsTest, SmallOverlapsWhoseWallsMeetAtTheNewBarMerge) {

@@ -164,17 +164,26 @@ TEST(MergeChainRivalsTest, TheConfiguredChainDoesNotAcceptTheWrongWing) {
         << caseError(merge_case, result.T_to_from).distance_cells << " cells from the truth";
   }
   const std::unique_ptr<MapMerger> without = makeMergerFrom(
-      "chain",
-      Config::loadString(
-          "chain: {slid_rivals: false, sweep_rivals: false}\nexhaustive: {hypotheses: 16}\n",
-          "m.yaml"));
+      "chain", Config::loadString(
+                   "chain: {slid_rivals: false, sweep_rivals: false, cleaner_alternative_rate: 0}\n"
+                   "exhaustive: {hypotheses: 16}\n",
+                   "m.yaml"));
   const MergeResult wrong = without->merge(merge_case.a, merge_case.b);
-  ASSERT_TRUE(wrong.accepted) << "without the earlier rival and the sweep the wrong wing is taken";
+  ASSERT_TRUE(wrong.accepted)
+      << "without the earlier rival, the sweep and the alternatives the wrong wing is taken";
   const std::unique_ptr<MapMerger> sweep_only = makeMergerFrom(
-      "chain",
-      Config::loadString("chain: {slid_rivals: false}\nexhaustive: {hypotheses: 16}\n", "m.yaml"));
+      "chain", Config::loadString("chain: {slid_rivals: false, cleaner_alternative_rate: 0}\n"
+                                  "exhaustive: {hypotheses: 16}\n",
+                                  "m.yaml"));
   const MergeResult swept = sweep_only->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(swept.accepted) << "the sweep finds the cleaner truth at the wrong wing's rotation";
+  const std::unique_ptr<MapMerger> alternatives_only = makeMergerFrom(
+      "chain", Config::loadString("chain: {slid_rivals: false, sweep_rivals: false}\n"
+                                  "exhaustive: {hypotheses: 16}\n",
+                                  "m.yaml"));
+  const MergeResult weighed = alternatives_only->merge(merge_case.a, merge_case.b);
+  EXPECT_FALSE(weighed.accepted) << "the exhaustive search's own hypotheses hold the truth";
+  EXPECT_NE(weighed.reason.find("another placement"), std::string::npos) << weighed.reason;
   EXPECT_GT(caseError(merge_case, wrong.T_to_from).distance_cells, 80.0);
 }
 

@@ -8,7 +8,10 @@
 // rival test, SeedMerger::rivalShareAgainst): the earlier step found the place, if not the exact
 // shift, and a transform elsewhere that explains the overlap no better is refused too. With
 // `sweep_rivals`, every translation at the accepted rotation is searched for a placement that
-// explains the overlap more cleanly (a building whose rooms repeat along a corridor).
+// explains the overlap more cleanly (a building whose rooms repeat along a corridor). With
+// `cleaner_alternative_rate`, the hypotheses of the steps' own searches at every rotation
+// (MergeResult::hypotheses) are judged alone, and one that passes elsewhere and fits more cleanly
+// refuses the merge (a hall that looks alike turned by a quarter or a half).
 
 #include <cmath>
 #include <memory>
@@ -37,6 +40,20 @@ struct ChainSettings {
   double sweep_step_deg = 1.0;  ///< rotation step of that sweep, degrees
   int sweep_peaks = 24;         ///< its best peaks, each placed by the ±δ search and weighed
   int sweep_coarse_cells = 4;   ///< cells per coarse cell of the sweep
+  /// An accepted transform is refused when a hypothesis of a step's own search
+  /// (MergeResult::hypotheses: the exhaustive search's, at any rotation) passes block 9's every
+  /// test on its own, lands more than `alternative_cells` away, and its known cells disagree at
+  /// most this many times as often (a hall that looks alike turned by a quarter or a half: the
+  /// wrong turn overlaps more and wins the ranking, the right one fits more cleanly); 0: off.
+  double cleaner_alternative_rate = 1.0;
+  /// The same for an alternative refused on its own only because its exact shift is not fixed
+  /// (MergeRefusal::kEntropy or kTranslation: the maps fit there, slid along a corridor); 0: off
+  /// (at 0.5 it refuses a wrong quarter turn and a right merge of the same figures alike).
+  double slid_alternative_rate = 0.0;
+  double alternative_cells = 10.0;  ///< alternatives land farther than this from it (cells)
+  /// Only hypotheses whose known cells, as found, disagree at most this many times as often as
+  /// the accepted transform's are judged on their own (each judgement refines a hypothesis).
+  double alternative_prefilter_rate = 2.0;
 };
 
 class ChainMerger : public MapMerger {
@@ -55,6 +72,15 @@ class ChainMerger : public MapMerger {
   /// With sweep_rivals: refuses the accepted `result` when a peak of the sweep at its rotation
   /// is a cleaner rival.
   void judgeAgainstSweep(const GridMap& from, const GridMap& to, MergeResult& result);
+
+  /// The bar of an alternative judged alone: cleaner_alternative_rate when it passes,
+  /// slid_alternative_rate when only its shift is not fixed, else 0 (no bar).
+  double alternativeRateBar(const MergeResult& alone) const;
+
+  /// With cleaner_alternative_rate: refuses the accepted `result` when one of the `searched`
+  /// hypotheses is a cleaner alternative that passes on its own.
+  void judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
+                                const std::vector<GridTransform>& searched, MergeResult& result);
 
   std::vector<std::unique_ptr<MapMerger>> steps_;
   ChainSettings settings_;

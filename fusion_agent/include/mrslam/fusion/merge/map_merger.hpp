@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "mrslam/common/grid_map.hpp"
 #include "mrslam/common/se2.hpp"
@@ -86,6 +87,9 @@ struct MergeResult {
   std::string reason;         ///< why it refused; empty when accepted
   /// When refused by block 9's acceptance: the test that refused T_to_from.
   MergeRefusal refusal = MergeRefusal::kUnspecified;
+  /// The hypotheses the merger's own search found before judging them (the exhaustive search's,
+  /// best first; empty for the others): a chain weighs them as alternatives to what it accepts.
+  std::vector<GridTransform> hypotheses;
 };
 
 class MapMerger {
