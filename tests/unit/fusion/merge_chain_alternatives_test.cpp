@@ -68,6 +68,22 @@ double angleErrorDeg(const MergeCase& merge_case, const GridTransform& T_b_a) {
   return caseError(merge_case, T_b_a).angle_rad * 180.0 / M_PI;
 }
 
+// Merges a case with the check off and with the defaults: off, the chain accepts a transform
+// turned more than `least_turn_deg` from the truth; on, it refuses it for another placement.
+// Returns the wrong transform's result.
+MergeResult expectTurnedWithoutTheCheckAndRefusedWithIt(const MergeCase& merge_case,
+                                                        double least_turn_deg) {
+  const MergeResult without =
+      chainWith("cleaner_alternative_rate: 0")->merge(merge_case.a, merge_case.b);
+  EXPECT_TRUE(without.accepted) << without.reason;
+  EXPECT_GT(angleErrorDeg(merge_case, without.T_to_from), least_turn_deg);
+  const MergeResult with = chainWith("")->merge(merge_case.a, merge_case.b);
+  EXPECT_FALSE(with.accepted);
+  EXPECT_EQ(with.refusal, MergeRefusal::kRival);
+  EXPECT_NE(with.reason.find("another placement"), std::string::npos) << with.reason;
+  return without;
+}
+
 TEST(MergeChainAlternativesTest, TheSettingsAreReadAndRangeChecked) {
   const ChainSettings defaults;
   EXPECT_DOUBLE_EQ(defaults.cleaner_alternative_rate, 1.0);
@@ -107,30 +123,16 @@ TEST(MergeChainAlternativesTest, TheExhaustiveStepReturnsItsHypothesesWithTheTru
 TEST(MergeChainAlternativesTest, AHallTurnedByAHalfIsAcceptedWithoutTheCheckAndRefusedWithIt) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   const MergeCase merge_case = cut(kHallTurnedByAHalf);
-  const MergeResult without =
-      chainWith("cleaner_alternative_rate: 0")->merge(merge_case.a, merge_case.b);
-  ASSERT_TRUE(without.accepted) << without.reason;
-  EXPECT_GT(angleErrorDeg(merge_case, without.T_to_from), 170.0);
-  const MergeResult with = chainWith("")->merge(merge_case.a, merge_case.b);
-  EXPECT_FALSE(with.accepted);
-  EXPECT_EQ(with.refusal, MergeRefusal::kRival);
-  EXPECT_NE(with.reason.find("another placement"), std::string::npos) << with.reason;
+  const MergeResult wrong = expectTurnedWithoutTheCheckAndRefusedWithIt(merge_case, 170.0);
   // The alternative that refuses it is the truth: cleaner by more than half.
-  const OverlapScore wrong = scoreOverlap(merge_case.a, merge_case.b, without.T_to_from);
-  const OverlapScore truth = scoreOverlap(merge_case.a, merge_case.b, merge_case.T_b_a);
-  EXPECT_LT(1.0 - truth.verification(), 0.5 * (1.0 - wrong.verification()));
+  const OverlapScore at_wrong = scoreOverlap(merge_case.a, merge_case.b, wrong.T_to_from);
+  const OverlapScore at_truth = scoreOverlap(merge_case.a, merge_case.b, merge_case.T_b_a);
+  EXPECT_LT(1.0 - at_truth.verification(), 0.5 * (1.0 - at_wrong.verification()));
 }
 
 TEST(MergeChainAlternativesTest, ARoomTurnedByAQuarterIsRefused) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
-  const MergeCase merge_case = cut(kRoomTurnedByAQuarter);
-  const MergeResult without =
-      chainWith("cleaner_alternative_rate: 0")->merge(merge_case.a, merge_case.b);
-  ASSERT_TRUE(without.accepted) << without.reason;
-  EXPECT_GT(angleErrorDeg(merge_case, without.T_to_from), 80.0);
-  const MergeResult with = chainWith("")->merge(merge_case.a, merge_case.b);
-  EXPECT_FALSE(with.accepted);
-  EXPECT_NE(with.reason.find("another placement"), std::string::npos) << with.reason;
+  expectTurnedWithoutTheCheckAndRefusedWithIt(cut(kRoomTurnedByAQuarter), 80.0);
 }
 
 TEST(MergeChainAlternativesTest, SlidAlternativesRefuseAWrongQuarterTurnAndARightMergeAlike) {

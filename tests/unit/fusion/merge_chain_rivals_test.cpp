@@ -152,39 +152,33 @@ TEST(MergeChainRivalsTest, AnEarlierSlidTransformThatExplainsLittleDoesNotRefuse
   EXPECT_EQ(result.method, "later");
 }
 
+// The wing case merged by a chain with these `chain:` settings and 16 exhaustive hypotheses.
+MergeResult mergeWingWith(const MergeCase& merge_case, const std::string& chain_settings) {
+  return makeMergerFrom("chain", Config::loadString("chain: {" + chain_settings +
+                                                        "}\nexhaustive: {hypotheses: 16}\n",
+                                                    "m.yaml"))
+      ->merge(merge_case.a, merge_case.b);
+}
+
 TEST(MergeChainRivalsTest, TheConfiguredChainDoesNotAcceptTheWrongWing) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   const MergeCase merge_case = cut(kRepeatingWing);
-  const std::unique_ptr<MapMerger> chain = makeMergerFrom(
-      "chain",
-      Config::loadString("chain: {slid_rivals: true}\nexhaustive: {hypotheses: 16}\n", "m.yaml"));
-  const MergeResult result = chain->merge(merge_case.a, merge_case.b);
+  const MergeResult result = mergeWingWith(merge_case, "slid_rivals: true");
   if (result.accepted) {
     EXPECT_TRUE(isCorrect(caseError(merge_case, result.T_to_from)))
         << caseError(merge_case, result.T_to_from).distance_cells << " cells from the truth";
   }
-  const std::unique_ptr<MapMerger> without = makeMergerFrom(
-      "chain", Config::loadString(
-                   "chain: {slid_rivals: false, sweep_rivals: false, cleaner_alternative_rate: 0}\n"
-                   "exhaustive: {hypotheses: 16}\n",
-                   "m.yaml"));
-  const MergeResult wrong = without->merge(merge_case.a, merge_case.b);
+  const MergeResult wrong = mergeWingWith(
+      merge_case, "slid_rivals: false, sweep_rivals: false, cleaner_alternative_rate: 0");
   ASSERT_TRUE(wrong.accepted)
       << "without the earlier rival, the sweep and the alternatives the wrong wing is taken";
-  const std::unique_ptr<MapMerger> sweep_only = makeMergerFrom(
-      "chain", Config::loadString("chain: {slid_rivals: false, cleaner_alternative_rate: 0}\n"
-                                  "exhaustive: {hypotheses: 16}\n",
-                                  "m.yaml"));
-  const MergeResult swept = sweep_only->merge(merge_case.a, merge_case.b);
+  EXPECT_GT(caseError(merge_case, wrong.T_to_from).distance_cells, 80.0);
+  const MergeResult swept =
+      mergeWingWith(merge_case, "slid_rivals: false, cleaner_alternative_rate: 0");
   EXPECT_FALSE(swept.accepted) << "the sweep finds the cleaner truth at the wrong wing's rotation";
-  const std::unique_ptr<MapMerger> alternatives_only = makeMergerFrom(
-      "chain", Config::loadString("chain: {slid_rivals: false, sweep_rivals: false}\n"
-                                  "exhaustive: {hypotheses: 16}\n",
-                                  "m.yaml"));
-  const MergeResult weighed = alternatives_only->merge(merge_case.a, merge_case.b);
+  const MergeResult weighed = mergeWingWith(merge_case, "slid_rivals: false, sweep_rivals: false");
   EXPECT_FALSE(weighed.accepted) << "the exhaustive search's own hypotheses hold the truth";
   EXPECT_NE(weighed.reason.find("another placement"), std::string::npos) << weighed.reason;
-  EXPECT_GT(caseError(merge_case, wrong.T_to_from).distance_cells, 80.0);
 }
 
 TEST(MergeChainRivalsTest, TheSettingIsRead) {
