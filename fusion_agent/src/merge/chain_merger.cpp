@@ -18,10 +18,21 @@ double disagreementRate(const OverlapScore& overlap) {
   return overlap.overlap() == 0 ? 1.0 : 1.0 - overlap.verification();
 }
 
-// Whether two transforms put `pivot` (a cell of `from`) within `cells` of each other.
+// How far apart two transforms put `pivot` (a cell of `from`), cells.
+double cellsApartAt(const GridTransform& T_a, const GridTransform& T_b,
+                    const Eigen::Vector2d& pivot) {
+  return (T_a.apply(pivot) - T_b.apply(pivot)).norm();
+}
+
+// The turn between two transforms, radians in [0, π].
+double turnBetween(const GridTransform& T_a, const GridTransform& T_b) {
+  return std::abs(wrapAngle(T_a.theta_rad - T_b.theta_rad));
+}
+
+// Whether two transforms put `pivot` within `cells` of each other.
 bool landsWithin(const GridTransform& T_a, const GridTransform& T_b, const Eigen::Vector2d& pivot,
                  double cells) {
-  return (T_a.apply(pivot) - T_b.apply(pivot)).norm() <= cells;
+  return cellsApartAt(T_a, T_b, pivot) <= cells;
 }
 
 void refuseForAlternative(const Eigen::Vector2d& pivot, const MergeResult& alternative,
@@ -29,9 +40,8 @@ void refuseForAlternative(const Eigen::Vector2d& pivot, const MergeResult& alter
   const GridTransform& T_alternative = alternative.T_to_from;
   std::ostringstream reason;
   reason.precision(3);
-  reason << "another placement, "
-         << (T_alternative.apply(pivot) - result.T_to_from.apply(pivot)).norm() << " cells and "
-         << std::abs(wrapAngle(T_alternative.theta_rad - result.T_to_from.theta_rad)) * 180.0 / M_PI
+  reason << "another placement, " << cellsApartAt(T_alternative, result.T_to_from, pivot)
+         << " cells and " << turnBetween(T_alternative, result.T_to_from) * 180.0 / M_PI
          << " degrees away, "
          << (alternative.accepted
                  ? std::string("passes every test on its own")
@@ -188,9 +198,8 @@ void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& se
       randomWalk(prepareDissimilarity(from, similarity), prepareDissimilarity(to, similarity),
                  result.T_to_from, walk);
   const Eigen::Vector2d centre(0.5 * from.geometry.width, 0.5 * from.geometry.height);
-  const double shift = (refined.T_to_from.apply(centre) - result.T_to_from.apply(centre)).norm();
-  const double turn = std::abs(wrapAngle(refined.T_to_from.theta_rad - result.T_to_from.theta_rad));
-  if (shift > settings.max_refinement_cells || turn > settings.max_refinement_rad) {
+  if (cellsApartAt(refined.T_to_from, result.T_to_from, centre) > settings.max_refinement_cells ||
+      turnBetween(refined.T_to_from, result.T_to_from) > settings.max_refinement_rad) {
     return;
   }
   const ComparisonTables tables(similarity);

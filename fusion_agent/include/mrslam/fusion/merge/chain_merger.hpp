@@ -77,8 +77,9 @@ class ChainMerger : public MapMerger {
   /// slid_alternative_rate when only its shift is not fixed, else 0 (no bar).
   double alternativeRateBar(const MergeResult& alone) const;
 
-  /// With cleaner_alternative_rate: refuses the accepted `result` when one of the `searched`
-  /// hypotheses is a cleaner alternative that passes on its own.
+  /// With cleaner_alternative_rate (or slid_alternative_rate): refuses the accepted `result`
+  /// when one of the `searched` hypotheses, judged alone, lands elsewhere and disagrees at most
+  /// alternativeRateBar() times as often.
   void judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
                                 const std::vector<GridTransform>& searched, MergeResult& result);
 
