@@ -23,6 +23,8 @@ std::vector<GridTransform> inverses(const std::vector<GridTransform>& transforms
 ExhaustiveMergerSettings loadExhaustiveMergerSettings(const Config& config) {
   ExhaustiveMergerSettings s;
   s.search = loadExhaustiveSearchSettings(config);
+  s.judged_hypotheses =
+      static_cast<int>(config.getInt("judged_hypotheses", s.judged_hypotheses, {0, 1000}));
   s.check_both_ways = config.getBool("check_both_ways", s.check_both_ways);
   s.agreement_cells = config.getDouble("agreement_cells", s.agreement_cells, {0.0, 1000.0});
   s.agreement_deg = config.getDouble("agreement_deg", s.agreement_deg, {0.0, 180.0});

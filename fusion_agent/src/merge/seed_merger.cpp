@@ -350,6 +350,7 @@ std::optional<seed::Refined> SeedMerger::nextAcceptable(
     if (k > 0) {
       refined = seed::finalize(candidates[k].T_to_from, inputs, tables_, settings_);
       refined.stage = candidates[k].stage;
+      refined.rank = k;
     }
     std::vector<bool> excluded(candidates.size(), false);
     for (int check = 0;; ++check) {
@@ -484,6 +485,13 @@ SeedMerger::Refusal SeedMerger::refusal(const seed::Refined& refined) const {
     return {MergeRefusal::kVerification, "verification index " + describe(verification) +
                                              " of a transform found with free agreement is below " +
                                              describe(settings_.global_free_min_verification)};
+  }
+  if (refined.rank >= static_cast<std::size_t>(settings_.late_rank) &&
+      verification < settings_.late_rank_min_verification) {
+    return {MergeRefusal::kVerification, "verification index " + describe(verification) +
+                                             " of the candidate ranked " +
+                                             std::to_string(refined.rank + 1) + " is below " +
+                                             describe(settings_.late_rank_min_verification)};
   }
   if (refined.structure < settings_.min_structure_agreement) {
     return {MergeRefusal::kStructure, "only " + describe(refined.structure) +

@@ -116,6 +116,9 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       section.getDouble("cleaner_rival_rate", settings.cleaner_rival_rate, {0.0, 1.0});
   settings.judged_candidates =
       static_cast<int>(section.getInt("judged_candidates", settings.judged_candidates, {1, 100}));
+  settings.late_rank = readInt(section, "late_rank", settings.late_rank, {0, 100});
+  settings.late_rank_min_verification = section.getDouble(
+      "late_rank_min_verification", settings.late_rank_min_verification, {0.0, 1.0});
   settings.wall_anchor = section.getBool("wall_anchor", settings.wall_anchor);
   settings.wall_ranking = section.getBool("wall_ranking", settings.wall_ranking);
   settings.refined_rivals = readInt(section, "refined_rivals", settings.refined_rivals, {0, 10});

@@ -201,6 +201,7 @@ struct Refined {
   double similarity_ambiguity = 1.0;   ///< agr - dis's runner-up share (wall_anchor)
   long long wall_margin = 0;           ///< the wall balance's lead over its runner-up (wall_anchor)
   double rival_share = 0.0;            ///< rivalShare() of the candidates
+  std::size_t rank = 0;  ///< the candidate's place in the ranking (0: first), when judged in turn
 };
 
 /// Rotation polish (step 7 of seed_merger.hpp), block 8 again at the polished angle, then ±1 cell

@@ -17,6 +17,7 @@
 namespace mrslam::fusion {
 namespace {
 
+using merge_test::angleErrorDeg;
 using merge_test::CropPair;
 using merge_test::cut;
 
@@ -62,10 +63,6 @@ const CropPair kRightMergeWithALesserAlternative{
 
 std::unique_ptr<MapMerger> chainWith(const std::string& chain_section) {
   return makeMergerFrom("chain", Config::loadString("chain: {" + chain_section + "}\n", "m.yaml"));
-}
-
-double angleErrorDeg(const MergeCase& merge_case, const GridTransform& T_b_a) {
-  return caseError(merge_case, T_b_a).angle_rad * 180.0 / M_PI;
 }
 
 // Merges a case with the check off and with the defaults: off, the chain accepts a transform

@@ -29,6 +29,11 @@ inline MergeCase cut(const CropPair& pair) {
   return merge_case;
 }
 
+/// How far `T_b_a` turns from the case's truth, degrees.
+inline double angleErrorDeg(const MergeCase& merge_case, const GridTransform& T_b_a) {
+  return caseError(merge_case, T_b_a).angle_rad * 180.0 / M_PI;
+}
+
 /// Merges a case's crops with `merger`, expecting an accepted transform within 2 cells and 1° of
 /// the truth; returns the result for further checks.
 inline MergeResult expectMergedWithinTwoCellsAndOneDegree(const MergeCase& merge_case,

@@ -28,6 +28,10 @@ namespace mrslam::fusion {
 
 struct ExhaustiveMergerSettings {
   ExhaustiveSearchSettings search;
+  /// Hypotheses the judge takes in turn when the best is refused (its judged_candidates for this
+  /// step; the seed pipeline's own candidates keep the judge's): the truth often ranks fourth or
+  /// later behind transforms with more walls in their overlap (0: the judge's judged_candidates).
+  int judged_hypotheses = 16;
   bool check_both_ways = true;      ///< the other way must accept the same transform
   double agreement_cells = 2.0;     ///< largest shift between the two ways' transforms, cells
   double agreement_deg = 1.0;       ///< largest turn between them, degrees
@@ -52,7 +56,7 @@ class ExhaustiveMerger : public MapMerger {
  public:
   explicit ExhaustiveMerger(ExhaustiveMergerSettings settings = {},
                             const SeedMergerSettings& judge = {})
-      : settings_(settings), judge_(judge), classes_(judge.similarity) {}
+      : settings_(settings), judge_(judgeSettings(settings, judge)), classes_(judge.similarity) {}
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "exhaustive"; }
 
@@ -60,6 +64,14 @@ class ExhaustiveMerger : public MapMerger {
   std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to) const;
 
  private:
+  /// The judge's settings with judged_hypotheses as its judged_candidates (unless 0).
+  static SeedMergerSettings judgeSettings(const ExhaustiveMergerSettings& settings,
+                                          SeedMergerSettings judge) {
+    if (settings.judged_hypotheses > 0) {
+      judge.judged_candidates = settings.judged_hypotheses;
+    }
+    return judge;
+  }
   /// The hypotheses with the pair's score of step 7 built once.
   std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to,
                                         const ExhaustiveScore& score) const;

@@ -86,7 +86,9 @@
 // `small_overlap_structure` and no rival exists. When the best candidate is refused, the next
 // `judged_candidates` are judged in turn, each facing the others as rivals; one refused for its
 // rival alone is judged again without it when that rival, refined, fails its own overlap, V,
-// structure or entropy test or settles onto the candidate (`refined_rivals`).
+// structure or entropy test or settles onto the candidate (`refined_rivals`). A candidate ranked
+// after the first `late_rank` needs V ≥ `late_rank_min_verification`: the ranking put transforms
+// with more walls ahead of it, and the wrong ones found that deep fit less cleanly than the truths.
 // Randomness comes from `seed` only: one merge of the same maps always gives the same answer.
 // Choices where the description is silent: D is the distance to the segment's total-least-
 // squares line and Δ the turning angle over chords of k points; the arc histogram is that of Δ;
@@ -159,7 +161,11 @@ struct SeedMergerSettings {
   /// A rival whose walls meet walls as well and whose known cells disagree at most this share as
   /// often as the best's refuses the best, as a rival of share 1 (0: off).
   double cleaner_rival_rate = 0.5;
-  int judged_candidates = 3;    ///< candidates judged in turn when the best is refused
+  int judged_candidates = 3;  ///< candidates judged in turn when the best is refused
+  /// A candidate ranked after the first `late_rank` (ranks 0, 1, ...) is accepted only at V ≥
+  /// late_rank_min_verification: the ranking put transforms with more walls ahead of it.
+  int late_rank = 3;
+  double late_rank_min_verification = 0.97;
   bool wall_anchor = true;      ///< step 7: translation by walls near walls before agr - dis
   bool wall_ranking = true;     ///< candidates placed and ranked by walls, rivals judged by both
   bool rank_by_overlap = true;  ///< candidates whose overlap is below min_overlap_cells rank last
