@@ -18,7 +18,20 @@ std::vector<GridTransform> inverses(const std::vector<GridTransform>& transforms
   return result;
 }
 
+/// The judge's settings with judged_hypotheses as its judged_candidates (unless 0).
+SeedMergerSettings judgeSettings(const ExhaustiveMergerSettings& settings,
+                                 SeedMergerSettings judge) {
+  if (settings.judged_hypotheses > 0) {
+    judge.judged_candidates = settings.judged_hypotheses;
+  }
+  return judge;
+}
+
 }  // namespace
+
+ExhaustiveMerger::ExhaustiveMerger(ExhaustiveMergerSettings settings,
+                                   const SeedMergerSettings& judge)
+    : settings_(settings), judge_(judgeSettings(settings, judge)), classes_(judge.similarity) {}
 
 ExhaustiveMergerSettings loadExhaustiveMergerSettings(const Config& config) {
   ExhaustiveMergerSettings s;

@@ -62,7 +62,7 @@ const CropPair kRightMergeWithALesserAlternative{
     {{567, 540}, 276, -2.582073759542, {14, 28}, {1, 19}}};
 
 std::unique_ptr<MapMerger> chainWith(const std::string& chain_section) {
-  return makeMergerFrom("chain", Config::loadString("chain: {" + chain_section + "}\n", "m.yaml"));
+  return merge_test::chainFrom("chain: {" + chain_section + "}\n");
 }
 
 // Merges a case with the check off and with the defaults: off, the chain accepts a transform

@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "mrslam/common/map_loaders.hpp"
 #include "mrslam/fusion/merge/map_merger.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
+#include "mrslam/fusion/merge/merger_registry.hpp"
 #include "test_data.hpp"
 
 namespace mrslam::fusion::merge_test {
@@ -27,6 +29,11 @@ inline MergeCase cut(const CropPair& pair) {
   MergeCase merge_case = makeCase(source, pair.a, source, pair.b);
   merge_case.id = pair.case_id;
   return merge_case;
+}
+
+/// The chain merger with the settings of `yaml` (a merge config's sections) over its defaults.
+inline std::unique_ptr<MapMerger> chainFrom(const std::string& yaml) {
+  return makeMergerFrom("chain", Config::loadString(yaml, "merge.yaml"));
 }
 
 /// How far `T_b_a` turns from the case's truth, degrees.

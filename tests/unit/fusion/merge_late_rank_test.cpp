@@ -20,6 +20,7 @@ namespace mrslam::fusion {
 namespace {
 
 using merge_test::angleErrorDeg;
+using merge_test::chainFrom;
 using merge_test::CropPair;
 using merge_test::cut;
 
@@ -50,17 +51,13 @@ const CropPair kHalfTurnRankedLate{"freiburg-aces.pgm",
                                    {{340, 642}, 250, 2.241421916448248, {19, 10}, {8, 11}},
                                    {{570, 580}, 319, -0.3892489898285496, {15, 39}, {32, 19}}};
 
-std::unique_ptr<MapMerger> chainWith(const std::string& sections) {
-  return makeMergerFrom("chain", Config::loadString(sections, "m.yaml"));
-}
-
 // Three judged hypotheses refuse the case; the defaults merge it within 2 cells and 1°.
 void expectRefusedAtThreeAndMergedByDefault(const CropPair& pair) {
   const MergeCase merge_case = cut(pair);
   const MergeResult at_three =
-      chainWith("exhaustive: {judged_hypotheses: 3}\n")->merge(merge_case.a, merge_case.b);
+      chainFrom("exhaustive: {judged_hypotheses: 3}\n")->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(at_three.accepted) << "case " << pair.case_id;
-  const std::unique_ptr<MapMerger> chain = chainWith("");
+  const std::unique_ptr<MapMerger> chain = chainFrom("");
   merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
 }
 
@@ -72,13 +69,13 @@ void expectTurnedAtALowerBarAndRefusedByDefault(const CropPair& pair, double low
   const MergeCase merge_case = cut(pair);
   const std::string deep = "seed: {judged_candidates: 16";
   const MergeResult lower =
-      chainWith(deep + ", late_rank_min_verification: " + std::to_string(lower_bar) + "}\n")
+      chainFrom(deep + ", late_rank_min_verification: " + std::to_string(lower_bar) + "}\n")
           ->merge(merge_case.a, merge_case.b);
   ASSERT_TRUE(lower.accepted) << "case " << pair.case_id << ": " << lower.reason;
   EXPECT_GT(angleErrorDeg(merge_case, lower.T_to_from), least_turn_deg);
   EXPECT_LT(lower.verification, SeedMergerSettings{}.late_rank_min_verification);
   // The bar is all that differs: the reason is the first candidate's, as for every refusal.
-  const MergeResult refused = chainWith(deep + "}\n")->merge(merge_case.a, merge_case.b);
+  const MergeResult refused = chainFrom(deep + "}\n")->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(refused.accepted);
 }
 

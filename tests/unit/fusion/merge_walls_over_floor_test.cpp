@@ -46,7 +46,7 @@ const CropPair kNearMissOfASmallOverlap{"carpin-robot0_cast.txt",
                                         {{10, 52}, 283, -1.2200085065712978, {34, 23}, {0, 15}}};
 
 std::unique_ptr<MapMerger> chainWith(const std::string& seed_section) {
-  return makeMergerFrom("chain", Config::loadString("seed: {" + seed_section + "}\n", "m.yaml"));
+  return merge_test::chainFrom("seed: {" + seed_section + "}\n");
 }
 
 TEST(MergeWallsOverFloorTest, TheSettingsAreReadAndRangeChecked) {

@@ -54,9 +54,9 @@ ExhaustiveMergerSettings loadExhaustiveMergerSettings(const Config& config);
 
 class ExhaustiveMerger : public MapMerger {
  public:
+  /// `judge` judges the hypotheses, with judged_hypotheses as its judged_candidates (unless 0).
   explicit ExhaustiveMerger(ExhaustiveMergerSettings settings = {},
-                            const SeedMergerSettings& judge = {})
-      : settings_(settings), judge_(judgeSettings(settings, judge)), classes_(judge.similarity) {}
+                            const SeedMergerSettings& judge = {});
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "exhaustive"; }
 
@@ -64,14 +64,6 @@ class ExhaustiveMerger : public MapMerger {
   std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to) const;
 
  private:
-  /// The judge's settings with judged_hypotheses as its judged_candidates (unless 0).
-  static SeedMergerSettings judgeSettings(const ExhaustiveMergerSettings& settings,
-                                          SeedMergerSettings judge) {
-    if (settings.judged_hypotheses > 0) {
-      judge.judged_candidates = settings.judged_hypotheses;
-    }
-    return judge;
-  }
   /// The hypotheses with the pair's score of step 7 built once.
   std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to,
                                         const ExhaustiveScore& score) const;
