@@ -43,9 +43,12 @@ void refuseForAlternative(const Eigen::Vector2d& pivot, const MergeResult& alter
   reason << "another placement, " << cellsApartAt(T_alternative, result.T_to_from, pivot)
          << " cells and " << turnBetween(T_alternative, result.T_to_from) * 180.0 / M_PI
          << " degrees away, "
-         << (alternative.accepted
-                 ? std::string("passes every test on its own")
-                 : "fails on its own only for its exact shift (" + alternative.reason + ")")
+         << (alternative.accepted ? std::string("passes every test on its own")
+                                  : "fails on its own only for " +
+                                        std::string(alternative.refusal == MergeRefusal::kStructure
+                                                        ? "the walls it leaves unmet"
+                                                        : "its exact shift") +
+                                        " (" + alternative.reason + ")")
          << ", and its known cells disagree " << ratio
          << " times as often (a building that looks alike turned)";
   result.accepted = false;
@@ -80,7 +83,8 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
       judgeAgainstSweep(from, to, result);
     }
     if (result.accepted &&
-        (settings_.cleaner_alternative_rate > 0.0 || settings_.slid_alternative_rate > 0.0)) {
+        (settings_.cleaner_alternative_rate > 0.0 || settings_.slid_alternative_rate > 0.0 ||
+         settings_.walls_alternative_rate > 0.0)) {
       judgeAgainstAlternatives(from, to, searched, result);
     }
     if (result.accepted) {
@@ -142,14 +146,18 @@ double ChainMerger::alternativeRateBar(const MergeResult& alone) const {
   }
   const bool slid =
       alone.refusal == MergeRefusal::kEntropy || alone.refusal == MergeRefusal::kTranslation;
-  return slid ? settings_.slid_alternative_rate : 0.0;
+  if (slid) {
+    return settings_.slid_alternative_rate;
+  }
+  return alone.refusal == MergeRefusal::kStructure ? settings_.walls_alternative_rate : 0.0;
 }
 
 void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
                                            const std::vector<GridTransform>& searched,
                                            MergeResult& result) {
   const Eigen::Vector2d pivot = knownCentroid(from);
-  const double rate = disagreementRate(scoreOverlap(from, to, result.T_to_from));
+  const OverlapScore accepted = scoreOverlap(from, to, result.T_to_from);
+  const double rate = disagreementRate(accepted);
   if (rate <= 0.0) {
     return;  // no placement fits more cleanly than one without a single disagreement
   }
@@ -171,8 +179,13 @@ void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& t
         landsWithin(result.T_to_from, alone.T_to_from, pivot, settings_.alternative_cells)) {
       continue;
     }
-    const double ratio = disagreementRate(scoreOverlap(from, to, alone.T_to_from)) / rate;
-    if (ratio <= bar) {
+    const OverlapScore there = scoreOverlap(from, to, alone.T_to_from);
+    const double ratio = disagreementRate(there) / rate;
+    const bool overlaps_enough =
+        alone.refusal != MergeRefusal::kStructure ||
+        static_cast<double>(there.overlap()) >=
+            settings_.walls_alternative_overlap * static_cast<double>(accepted.overlap());
+    if (ratio <= bar && overlaps_enough) {
       refuseForAlternative(pivot, alone, ratio, result);
       return;
     }
@@ -225,6 +238,10 @@ ChainSettings loadChainSettings(const Config& chain) {
       chain.getDouble("cleaner_alternative_rate", s.cleaner_alternative_rate, {0.0, 10.0});
   s.slid_alternative_rate =
       chain.getDouble("slid_alternative_rate", s.slid_alternative_rate, {0.0, 10.0});
+  s.walls_alternative_rate =
+      chain.getDouble("walls_alternative_rate", s.walls_alternative_rate, {0.0, 10.0});
+  s.walls_alternative_overlap =
+      chain.getDouble("walls_alternative_overlap", s.walls_alternative_overlap, {0.0, 100.0});
   s.alternative_cells = chain.getDouble("alternative_cells", s.alternative_cells, {0.0, 1000.0});
   s.alternative_prefilter_rate =
       chain.getDouble("alternative_prefilter_rate", s.alternative_prefilter_rate, {0.0, 100.0});

@@ -105,7 +105,8 @@ MergeResult ExhaustiveMerger::merge(const GridMap& from, const GridMap& to) {
     return result;
   }
   const Eigen::Vector2d pivot = knownCentroid(from);
-  if (settings_.check_own_score) {
+  if (settings_.check_own_score || settings_.max_turn_ambiguity < 1.0 ||
+      settings_.return_own_peak) {
     checkOwnScore(from, to, score, pivot, result);
   }
   if (result.accepted && settings_.check_both_ways) {
@@ -162,8 +163,10 @@ void ExhaustiveMerger::checkOwnScore(const GridMap& from, const GridMap& to,
   const ExhaustiveHypothesis best =
       score.bestNear(result.T_to_from, settings_.own_score_turn_deg * M_PI / 180.0, kTurnSteps,
                      settings_.own_score_shift_cells);
-  refuseUnlessAgreeing(pivot, best.T_to_from, "the search's own score peaks elsewhere: its best",
-                       result);
+  if (settings_.check_own_score) {
+    refuseUnlessAgreeing(pivot, best.T_to_from, "the search's own score peaks elsewhere: its best",
+                         result);
+  }
   if (result.accepted && settings_.max_turn_ambiguity < 1.0) {
     refuseUnlessTurnFixed(score, pivot, best, result);
   }

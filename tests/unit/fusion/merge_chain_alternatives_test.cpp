@@ -53,6 +53,25 @@ const CropPair kRightMergeWithACleanerSlidFit{
     {{210, 114}, 200, -0.9351607415413894, {17, 5}, {28, 6}},
     {{69, 16}, 205, 1.6566306342069028, {15, 21}, {26, 12}}};
 
+// Case 106 of `--seed 23` (Carpin's robot 2, 55 % overlap): the exhaustive step accepts a room
+// turned by 89° at V 0.979 over about 5000 cells. Its search also found the truth, which fits at
+// V 0.986 over about 7500 cells but is refused on its own by the structure test (0.80 of its
+// overlapping walls meet walls, below 0.88).
+const CropPair kRoomTurnedWithItsTruthUnwalled{
+    "carpin-robot2_cast.txt",
+    106,
+    {{158, 130}, 218, 0.44671080130935836, {1, 16}, {33, 29}},
+    {{268, 6}, 194, -2.639970872537721, {23, 36}, {5, 6}}};
+
+// Case 73 of `--seed 2` (Carpin's LongRun6, 41 % overlap): right merges at V 0.987; a placement
+// turned by 148° fits 0.38 times as often wrong over fewer known cells, refused on its own by the
+// structure test.
+const CropPair kRightMergeWithASmallerUnwalledFit{
+    "carpin-LongRun6.txt",
+    73,
+    {{352, 331}, 298, -2.2481069897883854, {2, 18}, {39, 31}},
+    {{506, 414}, 247, 2.123807185459751, {5, 36}, {4, 12}}};
+
 // Case 31 of `--seed 2` (ACES, 59 % overlap): right merges with an alternative that also passes
 // on its own but whose known cells disagree 1.8 times as often.
 const CropPair kRightMergeWithALesserAlternative{
@@ -85,21 +104,27 @@ TEST(MergeChainAlternativesTest, TheSettingsAreReadAndRangeChecked) {
   const ChainSettings defaults;
   EXPECT_DOUBLE_EQ(defaults.cleaner_alternative_rate, 1.0);
   EXPECT_DOUBLE_EQ(defaults.slid_alternative_rate, 0.0);
+  EXPECT_DOUBLE_EQ(defaults.walls_alternative_rate, 0.7);
+  EXPECT_DOUBLE_EQ(defaults.walls_alternative_overlap, 1.2);
   EXPECT_DOUBLE_EQ(defaults.alternative_cells, 10.0);
   EXPECT_DOUBLE_EQ(defaults.alternative_prefilter_rate, 2.0);
   const ChainSettings loaded = loadChainSettings(Config::loadString(
       "cleaner_alternative_rate: 0.5\nslid_alternative_rate: 0.25\nalternative_cells: 20\n"
-      "alternative_prefilter_rate: 3\n",
+      "alternative_prefilter_rate: 3\nwalls_alternative_rate: 0.5\nwalls_alternative_overlap: 2\n",
       "m.yaml"));
   EXPECT_DOUBLE_EQ(loaded.cleaner_alternative_rate, 0.5);
   EXPECT_DOUBLE_EQ(loaded.slid_alternative_rate, 0.25);
   EXPECT_DOUBLE_EQ(loaded.alternative_cells, 20.0);
   EXPECT_DOUBLE_EQ(loaded.alternative_prefilter_rate, 3.0);
+  EXPECT_DOUBLE_EQ(loaded.walls_alternative_rate, 0.5);
+  EXPECT_DOUBLE_EQ(loaded.walls_alternative_overlap, 2.0);
   EXPECT_THROW(loadChainSettings(Config::loadString("cleaner_alternative_rate: -1\n", "m.yaml")),
                ConfigError);
   EXPECT_THROW(loadChainSettings(Config::loadString("alternative_cells: -1\n", "m.yaml")),
                ConfigError);
   EXPECT_THROW(loadChainSettings(Config::loadString("slid_alternative_rate: 11\n", "m.yaml")),
+               ConfigError);
+  EXPECT_THROW(loadChainSettings(Config::loadString("walls_alternative_overlap: -1\n", "m.yaml")),
                ConfigError);
 }
 
@@ -148,6 +173,33 @@ TEST(MergeChainAlternativesTest, SlidAlternativesRefuseAWrongQuarterTurnAndARigh
   const std::unique_ptr<MapMerger> chain = chainWith("");
   merge_test::expectMergedWithinTwoCellsAndOneDegree(right_merge, *chain);
   EXPECT_FALSE(slid->merge(right_merge.a, right_merge.b).accepted);
+}
+
+TEST(MergeChainAlternativesTest, AnUnwalledTruthThatOverlapsMoreRefusesAQuarterTurn) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
+  const MergeCase merge_case = cut(kRoomTurnedWithItsTruthUnwalled);
+  const MergeResult wrong =
+      chainWith("walls_alternative_rate: 0")->merge(merge_case.a, merge_case.b);
+  ASSERT_TRUE(wrong.accepted) << wrong.reason;
+  EXPECT_GT(angleErrorDeg(merge_case, wrong.T_to_from), 80.0);
+  const MergeResult refused = chainWith("")->merge(merge_case.a, merge_case.b);
+  EXPECT_FALSE(refused.accepted);
+  EXPECT_NE(refused.reason.find("fails on its own only for the walls it leaves unmet"),
+            std::string::npos)
+      << refused.reason;
+}
+
+TEST(MergeChainAlternativesTest, AnUnwalledAlternativeThatOverlapsLessDoesNotRefuse) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun6.txt");
+  const MergeCase merge_case = cut(kRightMergeWithASmallerUnwalledFit);
+  const std::unique_ptr<MapMerger> chain = chainWith("");
+  merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
+  // Without the overlap bar its cleaner, smaller alternative refuses it: the bar decides.
+  const MergeResult any_overlap =
+      chainWith("walls_alternative_overlap: 0")->merge(merge_case.a, merge_case.b);
+  EXPECT_FALSE(any_overlap.accepted);
+  EXPECT_NE(any_overlap.reason.find("the walls it leaves unmet"), std::string::npos)
+      << any_overlap.reason;
 }
 
 TEST(MergeChainAlternativesTest, ARightMergeOutweighsALesserAlternative) {

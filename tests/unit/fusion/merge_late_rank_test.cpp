@@ -67,7 +67,8 @@ void expectRefusedAtThreeAndMergedByDefault(const CropPair& pair) {
 void expectTurnedAtALowerBarAndRefusedByDefault(const CropPair& pair, double lower_bar,
                                                 double least_turn_deg) {
   const MergeCase merge_case = cut(pair);
-  const std::string deep = "seed: {judged_candidates: 16";
+  // The unwalled alternatives (chain.walls_alternative_rate) would refuse the quarter turn too.
+  const std::string deep = "chain: {walls_alternative_rate: 0}\nseed: {judged_candidates: 16";
   const MergeResult lower =
       chainFrom(deep + ", late_rank_min_verification: " + std::to_string(lower_bar) + "}\n")
           ->merge(merge_case.a, merge_case.b);

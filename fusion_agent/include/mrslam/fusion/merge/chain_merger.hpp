@@ -11,7 +11,9 @@
 // explains the overlap more cleanly (a building whose rooms repeat along a corridor). With
 // `cleaner_alternative_rate`, the hypotheses of the steps' own searches at every rotation
 // (MergeResult::hypotheses) are judged alone, and one that passes elsewhere and fits more cleanly
-// refuses the merge (a hall that looks alike turned by a quarter or a half).
+// refuses the merge (a hall that looks alike turned by a quarter or a half). With
+// `walls_alternative_rate`, so does one refused alone only by the structure test that fits more
+// cleanly over more known cells (`walls_alternative_overlap`).
 
 #include <cmath>
 #include <memory>
@@ -50,7 +52,12 @@ struct ChainSettings {
   /// (MergeRefusal::kEntropy or kTranslation: the maps fit there, slid along a corridor); 0: off
   /// (at 0.5 it refuses a wrong quarter turn and a right merge of the same figures alike).
   double slid_alternative_rate = 0.0;
-  double alternative_cells = 10.0;  ///< alternatives land farther than this from it (cells)
+  /// The same for an alternative refused on its own only because too few of its overlapping walls
+  /// meet walls (MergeRefusal::kStructure), when it also overlaps walls_alternative_overlap times
+  /// as many known cells; 0: off.
+  double walls_alternative_rate = 0.7;
+  double walls_alternative_overlap = 1.2;  ///< ... the least overlap of it, times the accepted's
+  double alternative_cells = 10.0;         ///< alternatives land farther than this from it (cells)
   /// Only hypotheses whose known cells, as found, disagree at most this many times as often as
   /// the accepted transform's are judged on their own (each judgement refines a hypothesis).
   double alternative_prefilter_rate = 2.0;
