@@ -35,6 +35,17 @@ bool landsWithin(const GridTransform& T_a, const GridTransform& T_b, const Eigen
   return cellsApartAt(T_a, T_b, pivot) <= cells;
 }
 
+// How an alternative judged alone fared, in words.
+std::string howItFaredAlone(const MergeResult& alternative) {
+  if (alternative.accepted) {
+    return "passes every test on its own";
+  }
+  const bool unwalled = alternative.refusal == MergeRefusal::kStructure;
+  return std::string("fails on its own only for ") +
+         (unwalled ? "the walls it leaves unmet" : "its exact shift") + " (" + alternative.reason +
+         ")";
+}
+
 void refuseForAlternative(const Eigen::Vector2d& pivot, const MergeResult& alternative,
                           double ratio, MergeResult& result) {
   const GridTransform& T_alternative = alternative.T_to_from;
@@ -42,15 +53,8 @@ void refuseForAlternative(const Eigen::Vector2d& pivot, const MergeResult& alter
   reason.precision(3);
   reason << "another placement, " << cellsApartAt(T_alternative, result.T_to_from, pivot)
          << " cells and " << turnBetween(T_alternative, result.T_to_from) * 180.0 / M_PI
-         << " degrees away, "
-         << (alternative.accepted ? std::string("passes every test on its own")
-                                  : "fails on its own only for " +
-                                        std::string(alternative.refusal == MergeRefusal::kStructure
-                                                        ? "the walls it leaves unmet"
-                                                        : "its exact shift") +
-                                        " (" + alternative.reason + ")")
-         << ", and its known cells disagree " << ratio
-         << " times as often (a building that looks alike turned)";
+         << " degrees away, " << howItFaredAlone(alternative) << ", and its known cells disagree "
+         << ratio << " times as often (a building that looks alike turned)";
   result.accepted = false;
   result.refusal = MergeRefusal::kRival;
   result.reason = reason.str();
