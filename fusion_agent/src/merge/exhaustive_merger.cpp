@@ -105,7 +105,7 @@ MergeResult ExhaustiveMerger::merge(const GridMap& from, const GridMap& to) {
     return result;
   }
   const Eigen::Vector2d pivot = knownCentroid(from);
-  checkOwnScore(from, to, score, pivot, result);
+  applyOwnPeakChecks(from, to, score, pivot, result);
   if (result.accepted && settings_.check_both_ways) {
     checkTheOtherWay(from, to, found, pivot, result);
   }
@@ -153,9 +153,9 @@ void ExhaustiveMerger::refuseUnlessTurnFixed(const ExhaustiveScore& score,
   }
 }
 
-void ExhaustiveMerger::checkOwnScore(const GridMap& from, const GridMap& to,
-                                     const ExhaustiveScore& score, const Eigen::Vector2d& pivot,
-                                     MergeResult& result) const {
+void ExhaustiveMerger::applyOwnPeakChecks(const GridMap& from, const GridMap& to,
+                                          const ExhaustiveScore& score,
+                                          const Eigen::Vector2d& pivot, MergeResult& result) const {
   if (!settings_.check_own_score && settings_.max_turn_ambiguity >= 1.0 &&
       !settings_.return_own_peak) {
     return;  // the peak is not needed

@@ -452,9 +452,15 @@ bool SeedMerger::translationFixed(const seed::Refined& refined) const {
 }
 
 bool SeedMerger::wallsOutweighFloor(const seed::Refined& refined) const {
-  return refined.wall_ambiguity <= settings_.decisive_wall_ambiguity &&
-         refined.wall_margin >= settings_.decisive_wall_margin &&
-         verificationIndex(refined.full) >= settings_.walls_over_floor_min_v;
+  if (refined.wall_ambiguity > settings_.decisive_wall_ambiguity) {
+    return false;
+  }
+  // A wide lead of walls at a good V, or a narrower lead where the cells fit more cleanly.
+  const double verification = verificationIndex(refined.full);
+  return (refined.wall_margin >= settings_.decisive_wall_margin &&
+          verification >= settings_.walls_over_floor_min_v) ||
+         (refined.wall_margin >= settings_.clean_decisive_wall_margin &&
+          verification >= settings_.clean_walls_over_floor_min_v);
 }
 
 bool SeedMerger::entropyDisagrees(const seed::Refined& refined) const {

@@ -131,6 +131,10 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       section.getDouble("walls_over_floor_min_v", settings.walls_over_floor_min_v, {0.0, 2.0});
   settings.decisive_wall_margin =
       section.getInt("decisive_wall_margin", settings.decisive_wall_margin, {0, 1000000});
+  settings.clean_walls_over_floor_min_v = section.getDouble(
+      "clean_walls_over_floor_min_v", settings.clean_walls_over_floor_min_v, {0.0, 2.0});
+  settings.clean_decisive_wall_margin = section.getInt(
+      "clean_decisive_wall_margin", settings.clean_decisive_wall_margin, {0, 1000000});
   settings.wall_icp_iterations = static_cast<int>(
       section.getInt("wall_icp_iterations", settings.wall_icp_iterations, {0, 1000}));
   settings.wall_icp_samples = static_cast<int>(

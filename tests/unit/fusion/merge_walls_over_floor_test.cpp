@@ -1,4 +1,5 @@
-// Walls outweigh open floor (SeedMergerSettings::walls_over_floor_min_v, decisive_wall_margin):
+// Walls outweigh open floor (SeedMergerSettings::walls_over_floor_min_v, decisive_wall_margin, and
+// the cleaner pair clean_walls_over_floor_min_v, clean_decisive_wall_margin):
 // when the walls of an overlap pin the shift and V is high, open floor that slides along a
 // corridor neither leaves the translation unfixed nor moves the least merged entropy away from
 // the truth. Real crops with known answers, cut as `mrslam merge-cases` cuts them (the crops
@@ -45,6 +46,27 @@ const CropPair kNearMissOfASmallOverlap{"carpin-robot0_cast.txt",
                                         {{264, -17}, 274, -1.86412040594874, {25, 14}, {33, 34}},
                                         {{10, 52}, 283, -1.2200085065712978, {34, 23}, {0, 15}}};
 
+// Truths whose walls pin the shift (runner-up share 0.54-0.65) but lead by fewer than 45 sampled
+// walls, at V 0.998-0.999: case 32 of `--seed 5` (LongRun7, 64 % overlap), refused for the
+// translation (a lead of 17 walls), and case 84 of `--seed 1` (LongRun6, 34 %), refused by the
+// entropy test. The cleaner bar (V ≥ 0.99, a lead of 15 walls) merges both.
+const CropPair kNarrowLeadOfWalls[] = {{"carpin-LongRun7.txt",
+                                        32,
+                                        {{321, 659}, 180, -1.3509190197253476, {17, 10}, {0, 29}},
+                                        {{381, 484}, 246, 1.1073393208303255, {23, 23}, {17, 23}}},
+                                       {"carpin-LongRun6.txt",
+                                        84,
+                                        {{250, 594}, 221, -1.2234097106450996, {23, 14}, {26, 22}},
+                                        {{429, 487}, 244, 0.5312261242260798, {28, 8}, {29, 34}}}};
+
+// Case 33 of `--seed 24` (LongRun7, 28 % overlap): at a lead of 10-11 walls and V 0.992-0.994 the
+// cleaner bar would accept a transform 5.9 cells and 3.9° from the truth; a lead of 15 keeps it
+// out.
+const CropPair kNearMissOfANarrowLead{"carpin-LongRun7.txt",
+                                      33,
+                                      {{374, 603}, 223, 0.7718799694075509, {38, 8}, {25, 27}},
+                                      {{264, 508}, 180, 1.9647088551528302, {5, 20}, {32, 32}}};
+
 std::unique_ptr<MapMerger> chainWith(const std::string& seed_section) {
   return merge_test::chainFrom("seed: {" + seed_section + "}\n");
 }
@@ -63,6 +85,18 @@ TEST(MergeWallsOverFloorTest, TheSettingsAreReadAndRangeChecked) {
   EXPECT_THROW(
       loadSeedMergerSettings(Config::loadString("decisive_wall_margin: -1\n", "merge.yaml")),
       ConfigError);
+  EXPECT_DOUBLE_EQ(defaults.clean_walls_over_floor_min_v, 0.99);
+  EXPECT_EQ(defaults.clean_decisive_wall_margin, 15);
+  const SeedMergerSettings clean = loadSeedMergerSettings(Config::loadString(
+      "clean_walls_over_floor_min_v: 1.5\nclean_decisive_wall_margin: 20\n", "merge.yaml"));
+  EXPECT_DOUBLE_EQ(clean.clean_walls_over_floor_min_v, 1.5);
+  EXPECT_EQ(clean.clean_decisive_wall_margin, 20);
+  EXPECT_THROW(loadSeedMergerSettings(
+                   Config::loadString("clean_walls_over_floor_min_v: 2.5\n", "merge.yaml")),
+               ConfigError);
+  EXPECT_THROW(
+      loadSeedMergerSettings(Config::loadString("clean_decisive_wall_margin: -1\n", "merge.yaml")),
+      ConfigError);
 }
 
 TEST(MergeWallsOverFloorTest, TheTruthOfWallsOnOpenFloorIsAcceptedOnlyWithTheRule) {
@@ -70,7 +104,8 @@ TEST(MergeWallsOverFloorTest, TheTruthOfWallsOnOpenFloorIsAcceptedOnlyWithTheRul
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
   SeedMerger judge;
   SeedMergerSettings without_rule;
-  without_rule.walls_over_floor_min_v = 2.0;  // off
+  without_rule.walls_over_floor_min_v = 2.0;  // off, and its cleaner bar too
+  without_rule.clean_walls_over_floor_min_v = 2.0;
   SeedMerger old_judge(without_rule);
   for (const CropPair& pair : kWallsOnOpenFloor) {
     const MergeCase merge_case = cut(pair);
@@ -90,13 +125,47 @@ TEST(MergeWallsOverFloorTest, TheDefaultChainMergesWallsOnOpenFloor) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  const std::unique_ptr<MapMerger> without_rule = chainWith("walls_over_floor_min_v: 2");
+  const std::unique_ptr<MapMerger> without_rule =
+      chainWith("walls_over_floor_min_v: 2, clean_walls_over_floor_min_v: 2");
   for (const CropPair& pair : kWallsOnOpenFloor) {
     const MergeCase merge_case = cut(pair);
     merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
     EXPECT_FALSE(without_rule->merge(merge_case.a, merge_case.b).accepted)
         << "case " << pair.case_id;
   }
+}
+
+TEST(MergeWallsOverFloorTest, ANarrowLeadOfWallsFixesTheShiftOnlyWhereTheCellsFitCleanly) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun6.txt");
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun7.txt");
+  SeedMerger judge;
+  SeedMergerSettings without_clean_bar;
+  without_clean_bar.clean_walls_over_floor_min_v = 2.0;  // off
+  SeedMerger old_judge(without_clean_bar);
+  const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
+  for (const CropPair& pair : kNarrowLeadOfWalls) {
+    const MergeCase merge_case = cut(pair);
+    const MergeResult at_truth =
+        judge.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
+    EXPECT_TRUE(at_truth.accepted) << "case " << pair.case_id << ": " << at_truth.reason;
+    const MergeResult refused =
+        old_judge.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
+    EXPECT_FALSE(refused.accepted) << "case " << pair.case_id;
+    EXPECT_TRUE(refused.refusal == MergeRefusal::kTranslation ||
+                refused.refusal == MergeRefusal::kEntropy)
+        << "case " << pair.case_id << ": " << refused.reason;
+    merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
+  }
+}
+
+TEST(MergeWallsOverFloorTest, TheCleanWallMarginKeepsANearMissOut) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun7.txt");
+  const MergeCase merge_case = cut(kNearMissOfANarrowLead);
+  merge_test::expectNoWrongAccept(merge_case, *makeMerger(defaultMergerName()));
+  const std::unique_ptr<MapMerger> low_margin = chainWith("clean_decisive_wall_margin: 10");
+  const MergeResult missed = low_margin->merge(merge_case.a, merge_case.b);
+  ASSERT_TRUE(missed.accepted) << missed.reason;
+  EXPECT_GT(caseError(merge_case, missed.T_to_from).distance_cells, 4.0);
 }
 
 TEST(MergeWallsOverFloorTest, TheVBarKeepsAQuarterTurnOut) {

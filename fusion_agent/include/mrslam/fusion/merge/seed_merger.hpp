@@ -157,7 +157,11 @@ struct SeedMergerSettings {
   /// off).
   double walls_over_floor_min_v = 0.96;
   long long decisive_wall_margin = 45;  ///< ... and the best wall balance leads by this many walls
-  double max_rival_share = 0.93;        ///< largest agr - dis of a rival transform / best
+  /// The same for an overlap that fits more cleanly: at V ≥ clean_walls_over_floor_min_v, a lead of
+  /// clean_decisive_wall_margin walls is enough (> 1: off).
+  double clean_walls_over_floor_min_v = 0.99;
+  long long clean_decisive_wall_margin = 15;
+  double max_rival_share = 0.93;  ///< largest agr - dis of a rival transform / best
   /// A rival whose walls meet walls as well and whose known cells disagree at most this share as
   /// often as the best's refuses the best, as a rival of share 1 (0: off).
   double cleaner_rival_rate = 0.5;
