@@ -71,6 +71,22 @@ std::unique_ptr<MapMerger> chainWith(const std::string& seed_section) {
   return merge_test::chainFrom("seed: {" + seed_section + "}\n");
 }
 
+// The truth of `pair` judged alone: accepted by `judge`, refused by `without_rule` for its exact
+// shift (the translation or the entropy test).
+void expectTruthAcceptedOnlyWithTheRule(const CropPair& pair, SeedMerger& judge,
+                                        SeedMerger& without_rule) {
+  const MergeCase merge_case = cut(pair);
+  const MergeResult at_truth =
+      judge.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
+  EXPECT_TRUE(at_truth.accepted) << "case " << pair.case_id << ": " << at_truth.reason;
+  const MergeResult refused =
+      without_rule.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
+  EXPECT_FALSE(refused.accepted) << "case " << pair.case_id;
+  EXPECT_TRUE(refused.refusal == MergeRefusal::kTranslation ||
+              refused.refusal == MergeRefusal::kEntropy)
+      << "case " << pair.case_id << ": " << refused.reason;
+}
+
 TEST(MergeWallsOverFloorTest, TheSettingsAreReadAndRangeChecked) {
   const SeedMergerSettings defaults;
   EXPECT_DOUBLE_EQ(defaults.walls_over_floor_min_v, 0.96);
@@ -108,16 +124,7 @@ TEST(MergeWallsOverFloorTest, TheTruthOfWallsOnOpenFloorIsAcceptedOnlyWithTheRul
   without_rule.clean_walls_over_floor_min_v = 2.0;
   SeedMerger old_judge(without_rule);
   for (const CropPair& pair : kWallsOnOpenFloor) {
-    const MergeCase merge_case = cut(pair);
-    const MergeResult at_truth =
-        judge.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
-    EXPECT_TRUE(at_truth.accepted) << "case " << pair.case_id << ": " << at_truth.reason;
-    const MergeResult refused =
-        old_judge.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
-    EXPECT_FALSE(refused.accepted) << "case " << pair.case_id;
-    EXPECT_TRUE(refused.refusal == MergeRefusal::kTranslation ||
-                refused.refusal == MergeRefusal::kEntropy)
-        << "case " << pair.case_id << ": " << refused.reason;
+    expectTruthAcceptedOnlyWithTheRule(pair, judge, old_judge);
   }
 }
 
@@ -144,28 +151,24 @@ TEST(MergeWallsOverFloorTest, ANarrowLeadOfWallsFixesTheShiftOnlyWhereTheCellsFi
   SeedMerger old_judge(without_clean_bar);
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
   for (const CropPair& pair : kNarrowLeadOfWalls) {
-    const MergeCase merge_case = cut(pair);
-    const MergeResult at_truth =
-        judge.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
-    EXPECT_TRUE(at_truth.accepted) << "case " << pair.case_id << ": " << at_truth.reason;
-    const MergeResult refused =
-        old_judge.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
-    EXPECT_FALSE(refused.accepted) << "case " << pair.case_id;
-    EXPECT_TRUE(refused.refusal == MergeRefusal::kTranslation ||
-                refused.refusal == MergeRefusal::kEntropy)
-        << "case " << pair.case_id << ": " << refused.reason;
-    merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
+    expectTruthAcceptedOnlyWithTheRule(pair, judge, old_judge);
+    merge_test::expectMergedWithinTwoCellsAndOneDegree(pair, *chain);
   }
+}
+
+// The default chain accepts nothing wrong in `pair`; with `lower_margin` (a seed section) it
+// accepts a transform more than 4 cells from the truth: that margin decides the case.
+void expectTheMarginKeepsANearMissOut(const CropPair& pair, const std::string& lower_margin) {
+  const MergeCase merge_case = cut(pair);
+  merge_test::expectNoWrongAccept(merge_case, *makeMerger(defaultMergerName()));
+  const MergeResult missed = chainWith(lower_margin)->merge(merge_case.a, merge_case.b);
+  ASSERT_TRUE(missed.accepted) << missed.reason;
+  EXPECT_GT(caseError(merge_case, missed.T_to_from).distance_cells, 4.0);
 }
 
 TEST(MergeWallsOverFloorTest, TheCleanWallMarginKeepsANearMissOut) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun7.txt");
-  const MergeCase merge_case = cut(kNearMissOfANarrowLead);
-  merge_test::expectNoWrongAccept(merge_case, *makeMerger(defaultMergerName()));
-  const std::unique_ptr<MapMerger> low_margin = chainWith("clean_decisive_wall_margin: 10");
-  const MergeResult missed = low_margin->merge(merge_case.a, merge_case.b);
-  ASSERT_TRUE(missed.accepted) << missed.reason;
-  EXPECT_GT(caseError(merge_case, missed.T_to_from).distance_cells, 4.0);
+  expectTheMarginKeepsANearMissOut(kNearMissOfANarrowLead, "clean_decisive_wall_margin: 10");
 }
 
 TEST(MergeWallsOverFloorTest, TheVBarKeepsAQuarterTurnOut) {
@@ -184,13 +187,8 @@ TEST(MergeWallsOverFloorTest, TheVBarKeepsAQuarterTurnOut) {
 
 TEST(MergeWallsOverFloorTest, TheWallMarginKeepsANearMissOut) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
-  const MergeCase merge_case = cut(kNearMissOfASmallOverlap);
-  merge_test::expectNoWrongAccept(merge_case, *makeMerger(defaultMergerName()));
-  // A lead of 30 sampled walls lets the near miss through: the margin decides this case.
-  const std::unique_ptr<MapMerger> low_margin = chainWith("decisive_wall_margin: 30");
-  const MergeResult missed = low_margin->merge(merge_case.a, merge_case.b);
-  ASSERT_TRUE(missed.accepted) << missed.reason;
-  EXPECT_GT(caseError(merge_case, missed.T_to_from).distance_cells, 4.0);
+  // A lead of 30 sampled walls lets the near miss through.
+  expectTheMarginKeepsANearMissOut(kNearMissOfASmallOverlap, "decisive_wall_margin: 30");
 }
 
 }  // namespace
