@@ -144,16 +144,19 @@ void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, Merg
   }
 }
 
-double ChainMerger::alternativeRateBar(const MergeResult& alone) const {
+ChainMerger::AlternativeBar ChainMerger::alternativeBar(const MergeResult& alone) const {
   if (alone.accepted) {
-    return settings_.cleaner_alternative_rate;
+    return {settings_.cleaner_alternative_rate, 0.0};
   }
-  const bool slid =
-      alone.refusal == MergeRefusal::kEntropy || alone.refusal == MergeRefusal::kTranslation;
-  if (slid) {
-    return settings_.slid_alternative_rate;
+  switch (alone.refusal) {
+    case MergeRefusal::kEntropy:
+    case MergeRefusal::kTranslation:
+      return {settings_.slid_alternative_rate, 0.0};
+    case MergeRefusal::kStructure:
+      return {settings_.walls_alternative_rate, settings_.walls_alternative_overlap};
+    default:
+      return {};
   }
-  return alone.refusal == MergeRefusal::kStructure ? settings_.walls_alternative_rate : 0.0;
 }
 
 void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
@@ -178,18 +181,16 @@ void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& t
     const MergeResult alone = judge_.judgeHypotheses(from, to, {hypothesis});
     judged.push_back(hypothesis);
     judged.push_back(alone.T_to_from);
-    const double bar = alternativeRateBar(alone);
-    if (bar <= 0.0 ||
+    const AlternativeBar bar = alternativeBar(alone);
+    if (bar.rate <= 0.0 ||
         landsWithin(result.T_to_from, alone.T_to_from, pivot, settings_.alternative_cells)) {
       continue;
     }
     const OverlapScore there = scoreOverlap(from, to, alone.T_to_from);
     const double ratio = disagreementRate(there) / rate;
-    const bool overlaps_enough =
-        alone.refusal != MergeRefusal::kStructure ||
-        static_cast<double>(there.overlap()) >=
-            settings_.walls_alternative_overlap * static_cast<double>(accepted.overlap());
-    if (ratio <= bar && overlaps_enough) {
+    const bool overlaps_enough = static_cast<double>(there.overlap()) >=
+                                 bar.overlap * static_cast<double>(accepted.overlap());
+    if (ratio <= bar.rate && overlaps_enough) {
       refuseForAlternative(pivot, alone, ratio, result);
       return;
     }

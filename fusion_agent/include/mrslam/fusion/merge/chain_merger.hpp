@@ -80,13 +80,20 @@ class ChainMerger : public MapMerger {
   /// is a cleaner rival.
   void judgeAgainstSweep(const GridMap& from, const GridMap& to, MergeResult& result);
 
+  /// What an alternative must meet to refuse the accepted transform: disagree at most `rate`
+  /// times as often (0: no bar), over at least `overlap` times as many known cells.
+  struct AlternativeBar {
+    double rate = 0.0;
+    double overlap = 0.0;
+  };
   /// The bar of an alternative judged alone: cleaner_alternative_rate when it passes,
-  /// slid_alternative_rate when only its shift is not fixed, else 0 (no bar).
-  double alternativeRateBar(const MergeResult& alone) const;
+  /// slid_alternative_rate when only its shift is not fixed, walls_alternative_rate (with
+  /// walls_alternative_overlap) when only its walls are unmet, else no bar.
+  AlternativeBar alternativeBar(const MergeResult& alone) const;
 
-  /// With cleaner_alternative_rate (or slid_alternative_rate): refuses the accepted `result`
-  /// when one of the `searched` hypotheses, judged alone, lands elsewhere and disagrees at most
-  /// alternativeRateBar() times as often.
+  /// With cleaner_alternative_rate (or the slid or walls rates): refuses the accepted `result`
+  /// when one of the `searched` hypotheses, judged alone, lands elsewhere and meets its
+  /// alternativeBar().
   void judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
                                 const std::vector<GridTransform>& searched, MergeResult& result);
 
