@@ -435,10 +435,16 @@ void SeedMerger::judge(const seed::Refined& refined, const seed::SearchInputs& i
 }
 
 bool SeedMerger::smallOverlapDecisive(const seed::Refined& refined) const {
-  // Every overlapping wall meets a wall both ways and no other transform explains the overlap.
+  // Every overlapping wall meets a wall both ways (or nearly every one where the cells fit
+  // cleanly) and no other transform explains the overlap.
   const long long overlap = refined.full.agreement + refined.full.disagreement;
-  return settings_.small_overlap_cells > 0 && overlap >= settings_.small_overlap_cells &&
-         refined.structure >= settings_.small_overlap_structure && refined.rival_share <= 0.0;
+  if (settings_.small_overlap_cells <= 0 || overlap < settings_.small_overlap_cells ||
+      refined.rival_share > 0.0) {
+    return false;
+  }
+  return refined.structure >= settings_.small_overlap_structure ||
+         (refined.structure >= settings_.clean_small_overlap_structure &&
+          verificationIndex(refined.full) >= settings_.clean_small_overlap_min_v);
 }
 
 bool SeedMerger::translationFixed(const seed::Refined& refined) const {

@@ -104,6 +104,10 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       section.getInt("small_overlap_cells", settings.small_overlap_cells, {0.0, 1e9});
   settings.small_overlap_structure =
       section.getDouble("small_overlap_structure", settings.small_overlap_structure, {0.0, 1.0});
+  settings.clean_small_overlap_structure = section.getDouble(
+      "clean_small_overlap_structure", settings.clean_small_overlap_structure, {0.0, 1.0});
+  settings.clean_small_overlap_min_v = section.getDouble(
+      "clean_small_overlap_min_v", settings.clean_small_overlap_min_v, {0.0, 2.0});
   settings.min_structure_agreement =
       section.getDouble("min_structure_agreement", settings.min_structure_agreement, {0.0, 1.0});
   settings.entropy_agreement_cells =

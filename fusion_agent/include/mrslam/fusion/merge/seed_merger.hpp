@@ -83,7 +83,9 @@
 // `decisive_wall_margin` sampled walls fix it however flat agr - dis is, and the entropy test is
 // waived: over open floor bounded by the maps' edges its minimum drifts to more overlap.
 // An overlap of `small_overlap_cells` suffices when the structure agreement is at least
-// `small_overlap_structure` and no rival exists. When the best candidate is refused, the next
+// `small_overlap_structure` (or `clean_small_overlap_structure` at V at least
+// `clean_small_overlap_min_v`: the wrong small overlaps of two buildings fit less cleanly) and
+// no rival exists. When the best candidate is refused, the next
 // `judged_candidates` are judged in turn, each facing the others as rivals; one refused for its
 // rival alone is judged again without it when that rival, refined, fails its own overlap, V,
 // structure or entropy test or settles onto the candidate (`refined_rivals`). A candidate ranked
@@ -147,8 +149,12 @@ struct SeedMergerSettings {
   long long min_overlap_cells = 1500;   ///< least known cells in the overlap (agr + dis)
   long long small_overlap_cells = 400;  ///< least overlap when walls all meet and no rival (0: off)
   double small_overlap_structure = 0.98;  ///< structure agreement that lets small_overlap_cells do
-  double min_structure_agreement = 0.88;  ///< least share of walls landing on walls
-  double entropy_agreement_cells = 1.5;   ///< largest gap best-similarity ↔ least-entropy
+  /// The same for a small overlap that fits cleanly: structure ≥ clean_small_overlap_structure
+  /// at V ≥ clean_small_overlap_min_v (> 1: off).
+  double clean_small_overlap_structure = 0.95;
+  double clean_small_overlap_min_v = 0.955;
+  double min_structure_agreement = 0.88;    ///< least share of walls landing on walls
+  double entropy_agreement_cells = 1.5;     ///< largest gap best-similarity ↔ least-entropy
   double max_translation_ambiguity = 0.95;  ///< largest runner-up / best agr - dis in ±δ
   double decisive_wall_ambiguity = 0.85;    ///< walls fix the shift: wall runner-up share ≤ this
   double max_open_floor_ambiguity = 0.975;  ///< agr - dis runner-up bar when walls fix the shift
