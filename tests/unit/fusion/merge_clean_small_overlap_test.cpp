@@ -18,6 +18,7 @@ namespace mrslam::fusion {
 namespace {
 
 using merge_test::CropPair;
+using merge_test::TwoBuildings;
 
 // Truths of overlaps below 1500 known cells whose walls meet walls at a structure agreement
 // between 0.95 and 0.98: case 78 of `--seed 2` (LongRun6, 21 % overlap, V 0.988) and case 88 of
@@ -34,12 +35,6 @@ const CropPair kCleanSmallOverlaps[] = {
 
 // Crops of two buildings that the lower structure bar alone would merge, at V 0.932 (negative
 // case 205 of `--seed 10`) and 0.941 (negative case 204 of `--seed 29`): the V bar keeps them out.
-struct TwoBuildings {
-  const char* map_a;
-  CropSpec a;
-  const char* map_b;
-  CropSpec b;
-};
 const TwoBuildings kLooseSmallOverlaps[] = {
     {"carpin-robot3_cast.txt",
      {{86, -63}, 186, -2.1717314542464803, {19, 14}, {24, 2}},
@@ -52,13 +47,6 @@ const TwoBuildings kLooseSmallOverlaps[] = {
 
 std::unique_ptr<MapMerger> chainWith(const std::string& seed_section) {
   return merge_test::chainFrom("seed: {" + seed_section + "}\n");
-}
-
-MergeCase cutTwoBuildings(const TwoBuildings& pair) {
-  const auto source = [](const char* name) {
-    return SourceMap{name, name, loadMapFile(test::sharedDataPath(std::string("maps/") + name))};
-  };
-  return makeCase(source(pair.map_a), pair.a, source(pair.map_b), pair.b);
 }
 
 TEST(MergeCleanSmallOverlapTest, TheSettingsAreReadAndRangeChecked) {
@@ -98,7 +86,7 @@ TEST(MergeCleanSmallOverlapTest, TheVBarKeepsSmallOverlapsOfTwoBuildingsOut) {
   for (const TwoBuildings& pair : kLooseSmallOverlaps) {
     MRSLAM_REQUIRE_SHARED_DATA(std::string("maps/") + pair.map_a);
     MRSLAM_REQUIRE_SHARED_DATA(std::string("maps/") + pair.map_b);
-    const MergeCase merge_case = cutTwoBuildings(pair);
+    const MergeCase merge_case = merge_test::cut(pair);
     ASSERT_FALSE(merge_case.positive);
     const MergeResult refused = chain->merge(merge_case.a, merge_case.b);
     EXPECT_FALSE(refused.accepted) << pair.map_a << " onto " << pair.map_b;

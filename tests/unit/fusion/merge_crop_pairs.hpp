@@ -31,6 +31,21 @@ inline MergeCase cut(const CropPair& pair) {
   return merge_case;
 }
 
+/// Crops of two buildings (a negative case of `mrslam merge-cases`).
+struct TwoBuildings {
+  const char* map_a;
+  CropSpec a;
+  const char* map_b;
+  CropSpec b;
+};
+
+inline MergeCase cut(const TwoBuildings& pair) {
+  const auto source = [](const char* name) {
+    return SourceMap{name, name, loadMapFile(test::sharedDataPath(std::string("maps/") + name))};
+  };
+  return makeCase(source(pair.map_a), pair.a, source(pair.map_b), pair.b);
+}
+
 /// The chain merger with the settings of `yaml` (a merge config's sections) over its defaults.
 inline std::unique_ptr<MapMerger> chainFrom(const std::string& yaml) {
   return makeMergerFrom("chain", Config::loadString(yaml, "merge.yaml"));

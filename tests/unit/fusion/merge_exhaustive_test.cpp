@@ -102,14 +102,6 @@ TEST(ExhaustiveMergerTest, MergesLowOverlapCrops) {
   }
 }
 
-/// Negative cases 200-203 of the same run: crops of two buildings.
-struct TwoBuildings {
-  const char* map_a;
-  CropSpec a;
-  const char* map_b;
-  CropSpec b;
-};
-
 TEST(ExhaustiveMergerTest, IsJudgedWithTheSeedSectionsSettings) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
@@ -128,7 +120,8 @@ TEST(ExhaustiveMergerTest, IsJudgedWithTheSeedSectionsSettings) {
 }
 
 TEST(ExhaustiveMergerTest, CropsOfTwoBuildingsAreRefusedThroughTheDefaultChain) {
-  const TwoBuildings pairs[] = {
+  // Negative cases 200-203 of the same run.
+  const merge_test::TwoBuildings pairs[] = {
       {"carpin-robot3_cast.txt",
        {{24, -38}, 166, 1.6983886038110922, {15, 34}, {4, 4}},
        "carpin-intel.txt",
@@ -146,16 +139,13 @@ TEST(ExhaustiveMergerTest, CropsOfTwoBuildingsAreRefusedThroughTheDefaultChain) 
        "freiburg-aces.pgm",
        {{185, 820}, 231, 1.4240282951458365, {30, 35}, {37, 14}}},
   };
-  const auto source = [](const char* name) {
-    return SourceMap{name, name, loadMapFile(test::sharedDataPath(std::string("maps/") + name))};
-  };
   ASSERT_NE(std::string(kDefaultChainSteps).find("exhaustive"), std::string::npos);
   const Config methods = Config::loadString("", "merge.yaml");  // the default chain
   const std::unique_ptr<MapMerger> chain = makeMergerFrom("chain", methods);
-  for (const TwoBuildings& pair : pairs) {
+  for (const merge_test::TwoBuildings& pair : pairs) {
     MRSLAM_REQUIRE_SHARED_DATA(std::string("maps/") + pair.map_a);
     MRSLAM_REQUIRE_SHARED_DATA(std::string("maps/") + pair.map_b);
-    const MergeCase merge_case = makeCase(source(pair.map_a), pair.a, source(pair.map_b), pair.b);
+    const MergeCase merge_case = cut(pair);
     ASSERT_FALSE(merge_case.positive);
     const MergeResult result = chain->merge(merge_case.a, merge_case.b);
     EXPECT_FALSE(result.accepted) << pair.map_a << " onto " << pair.map_b << " accepted by "
