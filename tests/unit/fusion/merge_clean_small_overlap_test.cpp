@@ -45,10 +45,6 @@ const TwoBuildings kLooseSmallOverlaps[] = {
      "freiburg-intel.pgm",
      {{266, 370}, 190, -0.2796645146124379, {30, 18}, {34, 24}}}};
 
-std::unique_ptr<MapMerger> chainWith(const std::string& seed_section) {
-  return merge_test::chainFrom("seed: {" + seed_section + "}\n");
-}
-
 TEST(MergeCleanSmallOverlapTest, TheSettingsAreReadAndRangeChecked) {
   const SeedMergerSettings defaults;
   EXPECT_DOUBLE_EQ(defaults.clean_small_overlap_structure, 0.95);
@@ -69,7 +65,8 @@ TEST(MergeCleanSmallOverlapTest, CleanSmallOverlapsMergeOnlyWithTheLowerStructur
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun6.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  const std::unique_ptr<MapMerger> without = chainWith("clean_small_overlap_min_v: 2");  // off
+  const std::unique_ptr<MapMerger> without =
+      merge_test::chainWithSeed("clean_small_overlap_min_v: 2");  // off
   for (const CropPair& pair : kCleanSmallOverlaps) {
     const MergeCase merge_case = merge_test::cut(pair);
     merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
@@ -82,7 +79,8 @@ TEST(MergeCleanSmallOverlapTest, CleanSmallOverlapsMergeOnlyWithTheLowerStructur
 
 TEST(MergeCleanSmallOverlapTest, TheVBarKeepsSmallOverlapsOfTwoBuildingsOut) {
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  const std::unique_ptr<MapMerger> without_v_bar = chainWith("clean_small_overlap_min_v: 0");
+  const std::unique_ptr<MapMerger> without_v_bar =
+      merge_test::chainWithSeed("clean_small_overlap_min_v: 0");
   for (const TwoBuildings& pair : kLooseSmallOverlaps) {
     MRSLAM_REQUIRE_SHARED_DATA(std::string("maps/") + pair.map_a);
     MRSLAM_REQUIRE_SHARED_DATA(std::string("maps/") + pair.map_b);

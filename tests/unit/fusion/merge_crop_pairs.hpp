@@ -51,6 +51,12 @@ inline std::unique_ptr<MapMerger> chainFrom(const std::string& yaml) {
   return makeMergerFrom("chain", Config::loadString(yaml, "merge.yaml"));
 }
 
+/// The chain merger with `seed_section` (a flow mapping's body, "key: value, ...") as its `seed:`
+/// settings over the defaults.
+inline std::unique_ptr<MapMerger> chainWithSeed(const std::string& seed_section) {
+  return chainFrom("seed: {" + seed_section + "}\n");
+}
+
 /// How far `T_b_a` turns from the case's truth, degrees.
 inline double angleErrorDeg(const MergeCase& merge_case, const GridTransform& T_b_a) {
   return caseError(merge_case, T_b_a).angle_rad * 180.0 / M_PI;

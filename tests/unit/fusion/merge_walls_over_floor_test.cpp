@@ -67,10 +67,6 @@ const CropPair kNearMissOfANarrowLead{"carpin-LongRun7.txt",
                                       {{374, 603}, 223, 0.7718799694075509, {38, 8}, {25, 27}},
                                       {{264, 508}, 180, 1.9647088551528302, {5, 20}, {32, 32}}};
 
-std::unique_ptr<MapMerger> chainWith(const std::string& seed_section) {
-  return merge_test::chainFrom("seed: {" + seed_section + "}\n");
-}
-
 // The truth of `pair` judged alone: accepted by `judge`, refused by `without_rule` for its exact
 // shift (the translation or the entropy test).
 void expectTruthAcceptedOnlyWithTheRule(const CropPair& pair, SeedMerger& judge,
@@ -133,7 +129,7 @@ TEST(MergeWallsOverFloorTest, TheDefaultChainMergesWallsOnOpenFloor) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
   const std::unique_ptr<MapMerger> without_rule =
-      chainWith("walls_over_floor_min_v: 2, clean_walls_over_floor_min_v: 2");
+      merge_test::chainWithSeed("walls_over_floor_min_v: 2, clean_walls_over_floor_min_v: 2");
   for (const CropPair& pair : kWallsOnOpenFloor) {
     const MergeCase merge_case = cut(pair);
     merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
@@ -161,7 +157,8 @@ TEST(MergeWallsOverFloorTest, ANarrowLeadOfWallsFixesTheShiftOnlyWhereTheCellsFi
 void expectTheMarginKeepsANearMissOut(const CropPair& pair, const std::string& lower_margin) {
   const MergeCase merge_case = cut(pair);
   merge_test::expectNoWrongAccept(merge_case, *makeMerger(defaultMergerName()));
-  const MergeResult missed = chainWith(lower_margin)->merge(merge_case.a, merge_case.b);
+  const MergeResult missed =
+      merge_test::chainWithSeed(lower_margin)->merge(merge_case.a, merge_case.b);
   ASSERT_TRUE(missed.accepted) << missed.reason;
   EXPECT_GT(caseError(merge_case, missed.T_to_from).distance_cells, 4.0);
 }
