@@ -118,6 +118,10 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       section.getDouble("max_rival_share", settings.max_rival_share, {0.0, 1.0});
   settings.cleaner_rival_rate =
       section.getDouble("cleaner_rival_rate", settings.cleaner_rival_rate, {0.0, 1.0});
+  settings.dirtier_rival_structure =
+      section.getDouble("dirtier_rival_structure", settings.dirtier_rival_structure, {0.0, 1.0});
+  settings.dirtier_rival_rate =
+      section.getDouble("dirtier_rival_rate", settings.dirtier_rival_rate, {1.0, 100.0});
   settings.judged_candidates =
       static_cast<int>(section.getInt("judged_candidates", settings.judged_candidates, {1, 100}));
   settings.late_rank = readInt(section, "late_rank", settings.late_rank, {0, 100});

@@ -368,6 +368,16 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
 
 namespace {
 
+// Whether `other` covers the overlap only by covering more: its walls meet walls less well and
+// its known cells disagree more often than the chosen transform's (dirtier_rival_structure,
+// dirtier_rival_rate).
+bool dirtierThan(const Candidate& other, const Candidate& chosen,
+                 const SeedMergerSettings& settings) {
+  return settings.dirtier_rival_structure > 0.0 &&
+         other.structure <= chosen.structure - settings.dirtier_rival_structure &&
+         other.disagreement_rate >= settings.dirtier_rival_rate * chosen.disagreement_rate;
+}
+
 // agr - dis over all known cells at the best shift within ±1 cell (fine samples).
 long long fullSimilarity(const GridTransform& T_to_from, const SearchInputs& inputs,
                          const ComparisonTables& tables) {
@@ -386,7 +396,7 @@ std::optional<std::size_t> rivalOf(const std::vector<Candidate>& candidates,
   const Eigen::Vector2d centre = candidates.front().T_to_from.apply(inputs.pivot_from);
   for (std::size_t i = 1; i < candidates.size(); ++i) {
     const Candidate& other = candidates[i];
-    if (meetsBars(other, settings) &&
+    if (meetsBars(other, settings) && !dirtierThan(other, candidates.front(), settings) &&
         (other.T_to_from.apply(inputs.pivot_from) - centre).norm() > kRivalCells) {
       return i;
     }

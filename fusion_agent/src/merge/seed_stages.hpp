@@ -158,10 +158,12 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
 
 /// agr - dis of the best candidate after the first that meets the structure bar and puts
 /// `from`'s known cells elsewhere (more than 10 cells away at their centre), relative to the
-/// first's; 0 without one. Both are compared alike: the best shift within ±1 cell on the fine
-/// samples, then agr - dis over all known cells. Near 1: two different transforms explain the
-/// overlap equally well. With `wall_ranking`, the larger of that and the rival's share of the
-/// first's wall balance. A cleaner rival (cleanerRival()) counts as a share of 1.
+/// first's (a dirtier one, whose walls meet walls `dirtier_rival_structure` less well and whose
+/// cells disagree `dirtier_rival_rate` times as often, is passed over); 0 without one. Both are
+/// compared alike: the best shift within ±1 cell on the fine samples, then agr - dis over all
+/// known cells. Near 1: two different transforms explain the overlap equally well. With
+/// `wall_ranking`, the larger of that and the rival's share of the first's wall balance. A
+/// cleaner rival (cleanerRival()) counts as a share of 1.
 double rivalShare(const std::vector<Candidate>& candidates, const SearchInputs& inputs,
                   const ComparisonTables& tables, const SeedMergerSettings& settings);
 

@@ -20,10 +20,11 @@ namespace {
 using merge_test::CropPair;
 using merge_test::cut;
 
-// Case 111 of `--seed 6` (35 % overlap): the exhaustive search finds the truth and refuses it, as
-// the wrong wing explains the overlap as well (before walls outweighed open floor: as a shift of
-// 3 cells along the corridor scored 0.985 of it); the seed pipeline then accepts a
-// transform 90 cells (4.5 m) along the building, where a wing like the true one lies (V 0.964).
+// Case 111 of `--seed 6` (35 % overlap): the exhaustive search finds the truth. Counting every
+// rival, it refuses it, as the wrong wing explains the overlap as well (before walls outweighed
+// open floor: as a shift of 3 cells along the corridor scored 0.985 of it); the seed pipeline then
+// accepts a transform 90 cells (4.5 m) along the building, where a wing like the true one lies
+// (V 0.964). The wrong wing is a dirtier rival, passed over by default: the truth is accepted.
 const CropPair kRepeatingWing{"carpin-robot2_cast.txt",
                               111,
                               {{54, -99}, 230, 1.8453411708725067, {3, 27}, {27, 0}},
@@ -88,33 +89,46 @@ MergeResult chainOf(const MergeResult& first, const MergeResult& second, bool sl
   return chain.merge(merge_case.a, merge_case.b);
 }
 
-TEST(MergeChainRivalsTest, TheExhaustiveStepFindsAndRefusesTheTruthOfTheRepeatingWing) {
+MergeResult exhaustiveWith(const MergeCase& merge_case, const std::string& seed_settings) {
+  return makeMergerFrom("exhaustive", Config::loadString("exhaustive: {hypotheses: 16}\nseed: {" +
+                                                             seed_settings + "}\n",
+                                                         "merge.yaml"))
+      ->merge(merge_case.a, merge_case.b);
+}
+
+TEST(MergeChainRivalsTest, TheExhaustiveStepFindsTheTruthOfTheRepeatingWing) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   const MergeCase merge_case = cut(kRepeatingWing);
-  // Before walls outweighed open floor (walls_over_floor_min_v), the slide refused the truth;
-  // now the walls fix its shift and the wrong wing refuses it as a rival.
-  for (const bool with_rule : {true, false}) {
-    const std::string seed = with_rule ? "" : "seed: {walls_over_floor_min_v: 2}\n";
-    const MergeResult result =
-        makeMergerFrom("exhaustive",
-                       Config::loadString("exhaustive: {hypotheses: 16}\n" + seed, "merge.yaml"))
-            ->merge(merge_case.a, merge_case.b);
+  // The wrong wing covers more cells but fits them worse (a dirtier rival): the truth stands.
+  const MergeResult accepted = exhaustiveWith(merge_case, "");
+  ASSERT_TRUE(accepted.accepted) << accepted.reason;
+  EXPECT_TRUE(isCorrect(caseError(merge_case, accepted.T_to_from)))
+      << caseError(merge_case, accepted.T_to_from).distance_cells << " cells from the truth";
+  // Every rival counted, the wrong wing refuses it; before walls outweighed open floor
+  // (walls_over_floor_min_v), the slide refused it.
+  for (const bool walls_over_floor : {true, false}) {
+    const MergeResult result = exhaustiveWith(
+        merge_case, walls_over_floor ? "dirtier_rival_structure: 0"
+                                     : "dirtier_rival_structure: 0, walls_over_floor_min_v: 2");
     ASSERT_FALSE(result.accepted);
-    EXPECT_EQ(result.refusal, with_rule ? MergeRefusal::kRival : MergeRefusal::kTranslation)
+    EXPECT_EQ(result.refusal, walls_over_floor ? MergeRefusal::kRival : MergeRefusal::kTranslation)
         << result.reason;
     EXPECT_TRUE(isCorrect(caseError(merge_case, result.T_to_from)))
         << caseError(merge_case, result.T_to_from).distance_cells << " cells from the truth";
   }
 }
 
-TEST(MergeChainRivalsTest, TheTwoWingsAreEachOthersRivals) {
+TEST(MergeChainRivalsTest, TheTwoWingsAreEachOthersRivalsUnlessTheDirtierIsPassedOver) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   const MergeCase merge_case = cut(kRepeatingWing);
   ASSERT_GT(caseError(merge_case, wrongWing()).distance_cells, 80.0);
-  SeedMerger judge;
+  SeedMergerSettings every_rival;
+  every_rival.dirtier_rival_structure = 0.0;
+  SeedMerger judge(every_rival);
   const double max_share = judge.settings().max_rival_share;
   // The truth's known cells disagree half as often (a cleaner rival, share 1); the wrong wing's
-  // overlap is three times larger, and so is its agr - dis. Block 9 cannot tell them apart.
+  // overlap is three times larger, and so is its agr - dis. Every rival counted, block 9 cannot
+  // tell them apart.
   EXPECT_GT(judge.rivalShareAgainst(merge_case.a, merge_case.b, wrongWing(), {merge_case.T_b_a}),
             max_share);
   EXPECT_GT(judge.rivalShareAgainst(merge_case.a, merge_case.b, merge_case.T_b_a, {wrongWing()}),
@@ -123,6 +137,15 @@ TEST(MergeChainRivalsTest, TheTwoWingsAreEachOthersRivals) {
   EXPECT_LE(judge.rivalShareAgainst(merge_case.a, merge_case.b, merge_case.T_b_a,
                                     {quarterTurned(merge_case)}),
             max_share);
+  // By default the wrong wing, whose walls meet walls less well and whose cells disagree more
+  // often, is no rival of the truth; the truth still rivals the wrong wing.
+  SeedMerger by_default;
+  EXPECT_LE(
+      by_default.rivalShareAgainst(merge_case.a, merge_case.b, merge_case.T_b_a, {wrongWing()}),
+      max_share);
+  EXPECT_GT(
+      by_default.rivalShareAgainst(merge_case.a, merge_case.b, wrongWing(), {merge_case.T_b_a}),
+      max_share);
 }
 
 TEST(MergeChainRivalsTest, ALaterStepsTransformIsRefusedWhenAnEarlierSlidOneIsItsRival) {
@@ -152,10 +175,13 @@ TEST(MergeChainRivalsTest, AnEarlierSlidTransformThatExplainsLittleDoesNotRefuse
   EXPECT_EQ(result.method, "later");
 }
 
-// The wing case merged by a chain with these `chain:` settings and 16 exhaustive hypotheses.
-MergeResult mergeWingWith(const MergeCase& merge_case, const std::string& chain_settings) {
+// The wing case merged by a chain with these `chain:` and `seed:` settings and 16 exhaustive
+// hypotheses.
+MergeResult mergeWingWith(const MergeCase& merge_case, const std::string& chain_settings,
+                          const std::string& seed_settings = "dirtier_rival_structure: 0") {
   return makeMergerFrom("chain", Config::loadString("chain: {" + chain_settings +
-                                                        "}\nexhaustive: {hypotheses: 16}\n",
+                                                        "}\nexhaustive: {hypotheses: 16}\n" +
+                                                        "seed: {" + seed_settings + "}\n",
                                                     "m.yaml"))
       ->merge(merge_case.a, merge_case.b);
 }
@@ -163,11 +189,11 @@ MergeResult mergeWingWith(const MergeCase& merge_case, const std::string& chain_
 TEST(MergeChainRivalsTest, TheConfiguredChainDoesNotAcceptTheWrongWing) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   const MergeCase merge_case = cut(kRepeatingWing);
-  const MergeResult result = mergeWingWith(merge_case, "slid_rivals: true");
-  if (result.accepted) {
-    EXPECT_TRUE(isCorrect(caseError(merge_case, result.T_to_from)))
-        << caseError(merge_case, result.T_to_from).distance_cells << " cells from the truth";
-  }
+  const MergeResult result = mergeWingWith(merge_case, "slid_rivals: true", "");
+  ASSERT_TRUE(result.accepted) << result.reason;
+  EXPECT_TRUE(isCorrect(caseError(merge_case, result.T_to_from)))
+      << caseError(merge_case, result.T_to_from).distance_cells << " cells from the truth";
+  // Every rival counted (the wrong wing refuses the truth), the chain's own checks decide.
   const MergeResult wrong = mergeWingWith(
       merge_case, "slid_rivals: false, sweep_rivals: false, cleaner_alternative_rate: 0");
   ASSERT_TRUE(wrong.accepted)

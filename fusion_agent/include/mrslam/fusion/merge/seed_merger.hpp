@@ -55,7 +55,9 @@
 //    elsewhere scores more than `max_rival_share` of the best (a symmetric junction), nor one
 //    whose walls meet walls at least as well and whose known cells disagree at most
 //    `cleaner_rival_rate` times as often (a hall that looks alike turned by 180°, where the wrong
-//    turn overlaps more).
+//    turn overlaps more). A transform elsewhere whose walls meet walls `dirtier_rival_structure`
+//    less well and whose cells disagree `dirtier_rival_rate` times as often is no rival (a loop
+//    of corridors, where the placement one corridor over covers more cells and fits them worse).
 // 9. Fallback (ours, `radon_fallback`): when step 8 refuses, the `fallback_rotations` strongest
 //    peaks of the Radon profile correlation, each with its other half turn, are searched over all
 //    translations at once by a coarse DFT correlation (seed_fallback.cpp); its
@@ -171,6 +173,11 @@ struct SeedMergerSettings {
   /// A rival whose walls meet walls as well and whose known cells disagree at most this share as
   /// often as the best's refuses the best, as a rival of share 1 (0: off).
   double cleaner_rival_rate = 0.5;
+  /// A transform elsewhere whose walls meet walls at least dirtier_rival_structure less well than
+  /// the best's and whose known cells disagree at least dirtier_rival_rate times as often is no
+  /// rival: it scores by covering more cells, not by fitting them (0: off).
+  double dirtier_rival_structure = 0.03;
+  double dirtier_rival_rate = 1.1;
   int judged_candidates = 3;  ///< candidates judged in turn when the best is refused
   /// A candidate ranked after the first `late_rank` (ranks 0, 1, ...) is accepted only at V ≥
   /// late_rank_min_verification: the ranking put transforms with more walls ahead of it.
