@@ -153,7 +153,7 @@ struct SeedMergerSettings {
   double small_overlap_structure = 0.98;  ///< structure agreement that lets small_overlap_cells do
   /// The same for a small overlap that fits cleanly: structure ≥ clean_small_overlap_structure
   /// at V ≥ clean_small_overlap_min_v (> 1: off).
-  double clean_small_overlap_structure = 0.95;
+  double clean_small_overlap_structure = 0.93;
   double clean_small_overlap_min_v = 0.955;
   double min_structure_agreement = 0.88;    ///< least share of walls landing on walls
   double entropy_agreement_cells = 1.5;     ///< largest gap best-similarity ↔ least-entropy
