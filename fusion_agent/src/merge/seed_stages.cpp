@@ -370,11 +370,12 @@ namespace {
 
 // Whether `other` covers the overlap only by covering more: its walls meet walls less well and
 // its known cells disagree more often than the chosen transform's (dirtier_rival_structure,
-// dirtier_rival_rate).
+// dirtier_rival_rate; two rates of 0 are not "more often").
 bool dirtierThan(const Candidate& other, const Candidate& chosen,
                  const SeedMergerSettings& settings) {
   return settings.dirtier_rival_structure > 0.0 &&
          other.structure <= chosen.structure - settings.dirtier_rival_structure &&
+         other.disagreement_rate > chosen.disagreement_rate &&
          other.disagreement_rate >= settings.dirtier_rival_rate * chosen.disagreement_rate;
 }
 
