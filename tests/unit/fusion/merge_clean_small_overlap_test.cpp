@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -73,36 +74,32 @@ TEST(MergeCleanSmallOverlapTest, TheSettingsAreReadAndRangeChecked) {
       ConfigError);
 }
 
-TEST(MergeCleanSmallOverlapTest, CleanSmallOverlapsMergeOnlyWithTheLowerStructureBar) {
-  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun6.txt");
-  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
+// Each truth merges within 2 cells and 1° by default and is refused for its overlap by a chain
+// with the `seed:` settings `refusing_seed`.
+template <std::size_t N>
+void expectMergedOnlyByDefault(const CropPair (&truths)[N], const std::string& refusing_seed) {
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  const std::unique_ptr<MapMerger> without =
-      merge_test::chainWithSeed("clean_small_overlap_min_v: 2");  // off
-  for (const CropPair& pair : kCleanSmallOverlaps) {
+  const std::unique_ptr<MapMerger> refusing = merge_test::chainWithSeed(refusing_seed);
+  for (const CropPair& pair : truths) {
     const MergeCase merge_case = merge_test::cut(pair);
     merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
-    const MergeResult refused = without->merge(merge_case.a, merge_case.b);
+    const MergeResult refused = refusing->merge(merge_case.a, merge_case.b);
     EXPECT_FALSE(refused.accepted) << "case " << pair.case_id;
     EXPECT_NE(refused.reason.find("known cells is below"), std::string::npos)
         << "case " << pair.case_id << ": " << refused.reason;
   }
 }
 
+TEST(MergeCleanSmallOverlapTest, CleanSmallOverlapsMergeOnlyWithTheLowerStructureBar) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun6.txt");
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
+  expectMergedOnlyByDefault(kCleanSmallOverlaps, "clean_small_overlap_min_v: 2");  // off
+}
+
 TEST(MergeCleanSmallOverlapTest, TheStructureBarOf093MergesTruthsThat095Refused) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun6.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
-  const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  const std::unique_ptr<MapMerger> at_095 =
-      merge_test::chainWithSeed("clean_small_overlap_structure: 0.95");
-  for (const CropPair& pair : kCleanerSmallOverlaps) {
-    const MergeCase merge_case = merge_test::cut(pair);
-    merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
-    const MergeResult refused = at_095->merge(merge_case.a, merge_case.b);
-    EXPECT_FALSE(refused.accepted) << "case " << pair.case_id;
-    EXPECT_NE(refused.reason.find("known cells is below"), std::string::npos)
-        << "case " << pair.case_id << ": " << refused.reason;
-  }
+  expectMergedOnlyByDefault(kCleanerSmallOverlaps, "clean_small_overlap_structure: 0.95");
 }
 
 TEST(MergeCleanSmallOverlapTest, TheVBarKeepsSmallOverlapsOfTwoBuildingsOut) {
