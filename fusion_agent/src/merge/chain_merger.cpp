@@ -8,6 +8,7 @@
 #include "mrslam/fusion/merge/global_search.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
 #include "mrslam/fusion/merge/random_walk.hpp"
+#include "mrslam/fusion/merge/similarity.hpp"
 
 namespace mrslam::fusion {
 
@@ -86,6 +87,9 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
     if (result.accepted && settings_.sweep_rivals) {
       judgeAgainstSweep(from, to, result);
     }
+    if (result.accepted && !settings_.turned_rival_degrees.empty()) {
+      judgeAgainstTurns(from, to, result);
+    }
     if (result.accepted &&
         (settings_.cleaner_alternative_rate > 0.0 || settings_.slid_alternative_rate > 0.0 ||
          settings_.walls_alternative_rate > 0.0)) {
@@ -141,6 +145,83 @@ void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, Merg
     result.reason =
         "a transform elsewhere at the same rotation explains the overlap more cleanly (a building "
         "that repeats)";
+  }
+}
+
+namespace {
+
+/// The mean cell of `from` over its known cells that land on known cells of `to` (the centre of
+/// the overlap); the centre of `from`'s known cells when none does.
+Eigen::Vector2d overlapCentre(const GridMap& from, const GridMap& to,
+                              const GridTransform& T_to_from) {
+  const CellMapping to_cell(T_to_from);
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  double count = 0.0;
+  for (int y = 0; y < from.geometry.height; ++y) {
+    for (int x = 0; x < from.geometry.width; ++x) {
+      if (from.at(x, y) == GridMap::kUnknown) {
+        continue;
+      }
+      const Eigen::Vector2d there = to_cell(Eigen::Vector2d(x, y));
+      const int to_x = static_cast<int>(std::lround(there.x()));
+      const int to_y = static_cast<int>(std::lround(there.y()));
+      if (to.geometry.contains(to_x, to_y) && to.at(to_x, to_y) != GridMap::kUnknown) {
+        sum += Eigen::Vector2d(x, y);
+        count += 1.0;
+      }
+    }
+  }
+  return count > 0.0 ? Eigen::Vector2d(sum / count) : knownCentroid(from);
+}
+
+/// T_to_from applied after `from` is turned by `turn_rad` about its cell `pivot`.
+GridTransform turnedAbout(const GridTransform& T_to_from, const Eigen::Vector2d& pivot,
+                          double turn_rad) {
+  GridTransform turn;
+  turn.theta_rad = turn_rad;
+  turn.t_cells = pivot - turn.apply(pivot);
+  GridTransform turned;
+  turned.theta_rad = T_to_from.theta_rad + turn_rad;
+  turned.t_cells = T_to_from.apply(turn.t_cells);
+  return turned;
+}
+
+std::string describe(double value) {
+  std::ostringstream text;
+  text.precision(3);
+  text << value;
+  return text.str();
+}
+
+}  // namespace
+
+void ChainMerger::judgeAgainstTurns(const GridMap& from, const GridMap& to, MergeResult& result) {
+  const Eigen::Vector2d pivot = overlapCentre(from, to, result.T_to_from);
+  std::vector<GridTransform> turned;
+  for (const double degrees : settings_.turned_rival_degrees) {
+    turned.push_back(turnedAbout(result.T_to_from, pivot, degrees * M_PI / 180.0));
+  }
+  const std::vector<PlacedFit> fits = judge_.placedFits(from, to, result.T_to_from, turned);
+  if (fits.empty() || fits.front().similarity <= 0) {
+    return;
+  }
+  const PlacedFit& accepted = fits.front();
+  for (std::size_t i = 1; i < fits.size(); ++i) {
+    const double similarity =
+        static_cast<double>(fits[i].similarity) / static_cast<double>(accepted.similarity);
+    const bool as_clean =
+        fits[i].disagreement_rate <= settings_.turned_rival_rate * accepted.disagreement_rate;
+    if (similarity >= settings_.turned_rival_similarity && as_clean) {
+      const std::string rate =
+          accepted.disagreement_rate > 0.0
+              ? describe(fits[i].disagreement_rate / accepted.disagreement_rate) + " times as often"
+              : "no more often";
+      result.accepted = false;
+      result.reason = "the overlap turned about its centre explains more of it about as cleanly (" +
+                      describe(similarity) + " times agr - dis, its cells disagreeing " + rate +
+                      "): the rotation is not fixed";
+      return;
+    }
   }
 }
 
@@ -235,6 +316,11 @@ ChainSettings loadChainSettings(const Config& chain) {
   s.refine_psi = chain.getBool("refine_psi", s.refine_psi);
   s.slid_rivals = chain.getBool("slid_rivals", s.slid_rivals);
   s.sweep_rivals = chain.getBool("sweep_rivals", s.sweep_rivals);
+  s.turned_rival_degrees =
+      chain.getDoubles("turned_rival_degrees", s.turned_rival_degrees, 0, {1.0, 359.0});
+  s.turned_rival_similarity =
+      chain.getDouble("turned_rival_similarity", s.turned_rival_similarity, {1.0, 100.0});
+  s.turned_rival_rate = chain.getDouble("turned_rival_rate", s.turned_rival_rate, {0.0, 100.0});
   s.sweep_step_deg = chain.getDouble("sweep_step_deg", s.sweep_step_deg, {0.1, 10.0});
   s.sweep_peaks = static_cast<int>(chain.getInt("sweep_peaks", s.sweep_peaks, {1, 100}));
   s.sweep_coarse_cells =

@@ -279,6 +279,20 @@ bool SeedMerger::cleanerRivalAmong(const GridMap& from, const GridMap& to,
   return false;
 }
 
+std::vector<PlacedFit> SeedMerger::placedFits(const GridMap& from, const GridMap& to,
+                                              const GridTransform& T_to_from,
+                                              const std::vector<GridTransform>& others) {
+  std::vector<PlacedFit> fits;
+  if (!inputRefusal(from, to).empty()) {
+    return fits;
+  }
+  const seed::SearchInputs inputs = searchInputs(from, to);
+  for (const seed::Candidate& placed : placedFacing(T_to_from, others, inputs)) {
+    fits.push_back({placed.T_to_from, placed.similarity, placed.disagreement_rate});
+  }
+  return fits;
+}
+
 bool SeedMerger::settlesApart(const seed::Refined& rival, const seed::Candidate& chosen,
                               const seed::SearchInputs& inputs) {
   return (rival.T_to_from.apply(inputs.pivot_from) - chosen.T_to_from.apply(inputs.pivot_from))

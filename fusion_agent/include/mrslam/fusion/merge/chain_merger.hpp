@@ -13,7 +13,9 @@
 // (MergeResult::hypotheses) are judged alone, and one that passes elsewhere and fits more cleanly
 // refuses the merge (a hall that looks alike turned by a quarter or a half). With
 // `walls_alternative_rate`, so does one refused alone only by the structure test that fits more
-// cleanly over more known cells (`walls_alternative_overlap`).
+// cleanly over more known cells (`walls_alternative_overlap`). With `turned_rival_degrees`, the
+// overlap turned by a quarter or a half about its centre and placed again refuses the merge when
+// it explains clearly more of it about as cleanly (a room that fits turned as well).
 
 #include <cmath>
 #include <memory>
@@ -61,6 +63,15 @@ struct ChainSettings {
   /// Only hypotheses whose known cells, as found, disagree at most this many times as often as
   /// the accepted transform's are judged on their own (each judgement refines a hypothesis).
   double alternative_prefilter_rate = 2.0;
+  /// An accepted transform is refused when the overlap turned by one of these angles (degrees)
+  /// about its centre and placed by the ±δ search explains turned_rival_similarity times its
+  /// agr - dis or more while its known cells disagree at most turned_rival_rate times as often:
+  /// a room or hall that looks alike turned, placed the wrong way round (its walls need not
+  /// meet walls, as the walls of the right turn often do not where the maps were cut). Empty: off.
+  std::vector<double> turned_rival_degrees = {90.0, 180.0, 270.0};
+  double turned_rival_similarity =
+      1.5;                         ///< least agr - dis of the turned one, times the accepted's
+  double turned_rival_rate = 1.5;  ///< most disagreement rate of it, times the accepted's
 };
 
 class ChainMerger : public MapMerger {
@@ -79,6 +90,10 @@ class ChainMerger : public MapMerger {
   /// With sweep_rivals: refuses the accepted `result` when a peak of the sweep at its rotation
   /// is a cleaner rival.
   void judgeAgainstSweep(const GridMap& from, const GridMap& to, MergeResult& result);
+
+  /// With turned_rival_degrees: refuses the accepted `result` when a turned copy of it explains
+  /// more of the overlap about as cleanly.
+  void judgeAgainstTurns(const GridMap& from, const GridMap& to, MergeResult& result);
 
   /// What an alternative must meet to refuse the accepted transform: disagree at most `rate`
   /// times as often (0: no bar), over at least `overlap` times as many known cells.

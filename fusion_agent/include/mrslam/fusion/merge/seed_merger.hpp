@@ -229,6 +229,13 @@ struct SeedMergeTimings {
   Duration alignment{};     ///< the walls aligned both ways, when accepted
 };
 
+/// How one transform fits once placed by block 8's ±δ search (SeedMerger::placedFits).
+struct PlacedFit {
+  GridTransform T_to_from;         ///< the placed transform
+  long long similarity = 0;        ///< agr - dis on the search samples
+  double disagreement_rate = 0.0;  ///< 1 - V over all known cells
+};
+
 class SeedMerger : public MapMerger {
  public:
   explicit SeedMerger(const SeedMergerSettings& settings = {});
@@ -256,6 +263,11 @@ class SeedMerger : public MapMerger {
   /// more than kRivalCells away (up to `refined_rivals` candidates in turn).
   bool cleanerRivalAmong(const GridMap& from, const GridMap& to, const GridTransform& T_to_from,
                          const std::vector<GridTransform>& others);
+  /// `T_to_from` and then each of `others`, placed by the ±δ search, and how each fits there;
+  /// empty when the maps cannot be compared (no overlap, resolutions that differ).
+  std::vector<PlacedFit> placedFits(const GridMap& from, const GridMap& to,
+                                    const GridTransform& T_to_from,
+                                    const std::vector<GridTransform>& others);
 
  private:
   /// Adds `more` to the ordered `candidates`; `refined` follows a new best and the rival share.
