@@ -14,6 +14,14 @@ namespace mrslam::fusion {
 
 namespace {
 
+// A figure of a refusal's reason, to 3 significant digits.
+std::string describe(double value) {
+  std::ostringstream text;
+  text.precision(3);
+  text << value;
+  return text.str();
+}
+
 // 1 - V over the overlap; 1 with no overlap.
 double disagreementRate(const OverlapScore& overlap) {
   return overlap.overlap() == 0 ? 1.0 : 1.0 - overlap.verification();
@@ -119,12 +127,9 @@ void ChainMerger::judgeAgainstEarlier(const GridMap& from, const GridMap& to,
                                       MergeResult& result) {
   const double share = judge_.rivalShareAgainst(from, to, result.T_to_from, earlier);
   if (share > judge_.settings().max_rival_share) {
-    std::ostringstream shareText;
-    shareText.precision(3);
-    shareText << share;
     result.accepted = false;
     result.reason = "a transform an earlier step refused explains the overlap almost as well (" +
-                    shareText.str() + " of this one)";
+                    describe(share) + " of this one)";
   }
 }
 
@@ -184,13 +189,6 @@ GridTransform turnedAbout(const GridTransform& T_to_from, const Eigen::Vector2d&
   turned.theta_rad = T_to_from.theta_rad + turn_rad;
   turned.t_cells = T_to_from.apply(turn.t_cells);
   return turned;
-}
-
-std::string describe(double value) {
-  std::ostringstream text;
-  text.precision(3);
-  text << value;
-  return text.str();
 }
 
 }  // namespace

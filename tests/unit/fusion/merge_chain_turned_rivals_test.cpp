@@ -5,11 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "merge_crop_pairs.hpp"
 #include "mrslam/fusion/merge/chain_merger.hpp"
+#include "mrslam/fusion/merge/seed_merger.hpp"
 #include "test_data.hpp"
 
 namespace mrslam::fusion {
@@ -103,6 +106,26 @@ TEST(MergeChainTurnedRivalsTest, ATurnThatFitsLessCleanlyLeavesTheTruthPlaced) {
     const MergeResult refused = without_rate_bar->merge(merge_case.a, merge_case.b);
     EXPECT_TRUE(refusedForTheTurn(refused)) << "case " << pair.case_id << ": " << refused.reason;
   }
+}
+
+TEST(MergeChainTurnedRivalsTest, PlacedFitsPutTheTransformFirstAndNeedComparableMaps) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
+  const MergeCase merge_case = merge_test::cut(kTruthsWithDirtierTurns[0]);
+  SeedMerger judge;
+  GridTransform turned = merge_case.T_b_a;
+  turned.theta_rad += M_PI;
+  const std::vector<PlacedFit> fits =
+      judge.placedFits(merge_case.a, merge_case.b, merge_case.T_b_a, {turned});
+  ASSERT_EQ(fits.size(), 2u);
+  // The truth, placed by the ±δ search, stays at the truth and fits cleanly.
+  const CaseError error = caseError(merge_case, fits.front().T_to_from);
+  EXPECT_TRUE(isCorrect(error)) << error.distance_cells << " cells";
+  EXPECT_GT(fits.front().similarity, 0);
+  EXPECT_LT(fits.front().disagreement_rate, 0.05);
+  EXPECT_GT(fits.back().disagreement_rate, fits.front().disagreement_rate);
+  GridMap coarser = merge_case.b;
+  coarser.geometry.resolution_m *= 2.0;
+  EXPECT_TRUE(judge.placedFits(merge_case.a, coarser, merge_case.T_b_a, {turned}).empty());
 }
 
 }  // namespace

@@ -69,9 +69,8 @@ struct ChainSettings {
   /// a room or hall that looks alike turned, placed the wrong way round (its walls need not
   /// meet walls, as the walls of the right turn often do not where the maps were cut). Empty: off.
   std::vector<double> turned_rival_degrees = {90.0, 180.0, 270.0};
-  double turned_rival_similarity =
-      1.5;                         ///< least agr - dis of the turned one, times the accepted's
-  double turned_rival_rate = 1.5;  ///< most disagreement rate of it, times the accepted's
+  double turned_rival_similarity = 1.5;  ///< least agr - dis of a turn, times the accepted's
+  double turned_rival_rate = 1.5;        ///< most disagreement rate of a turn, times the accepted's
 };
 
 class ChainMerger : public MapMerger {

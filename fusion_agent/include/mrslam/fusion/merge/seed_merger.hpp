@@ -263,8 +263,9 @@ class SeedMerger : public MapMerger {
   /// more than kRivalCells away (up to `refined_rivals` candidates in turn).
   bool cleanerRivalAmong(const GridMap& from, const GridMap& to, const GridTransform& T_to_from,
                          const std::vector<GridTransform>& others);
-  /// `T_to_from` and then each of `others`, placed by the ±δ search, and how each fits there;
-  /// empty when the maps cannot be compared (no overlap, resolutions that differ).
+  /// `T_to_from` placed by the ±δ search and how it fits there, then the placements of the
+  /// distinct `others`, best first (as block 9 ranks candidates); empty when the maps cannot be
+  /// compared (resolutions that differ, an empty map).
   std::vector<PlacedFit> placedFits(const GridMap& from, const GridMap& to,
                                     const GridTransform& T_to_from,
                                     const std::vector<GridTransform>& others);
