@@ -204,11 +204,14 @@ void ChainMerger::judgeAgainstTurns(const GridMap& from, const GridMap& to, Merg
     return;
   }
   const PlacedFit& accepted = fits.front();
+  const double rate_bar =
+      accepted.structure < settings_.turned_rival_weak_structure
+          ? std::max(settings_.turned_rival_rate, settings_.turned_rival_weak_rate)
+          : settings_.turned_rival_rate;
   for (std::size_t i = 1; i < fits.size(); ++i) {
     const double similarity =
         static_cast<double>(fits[i].similarity) / static_cast<double>(accepted.similarity);
-    const bool as_clean =
-        fits[i].disagreement_rate <= settings_.turned_rival_rate * accepted.disagreement_rate;
+    const bool as_clean = fits[i].disagreement_rate <= rate_bar * accepted.disagreement_rate;
     if (similarity >= settings_.turned_rival_similarity && as_clean) {
       const std::string rate =
           accepted.disagreement_rate > 0.0
@@ -319,6 +322,10 @@ ChainSettings loadChainSettings(const Config& chain) {
   s.turned_rival_similarity =
       chain.getDouble("turned_rival_similarity", s.turned_rival_similarity, {1.0, 100.0});
   s.turned_rival_rate = chain.getDouble("turned_rival_rate", s.turned_rival_rate, {0.0, 100.0});
+  s.turned_rival_weak_structure =
+      chain.getDouble("turned_rival_weak_structure", s.turned_rival_weak_structure, {0.0, 1.0});
+  s.turned_rival_weak_rate =
+      chain.getDouble("turned_rival_weak_rate", s.turned_rival_weak_rate, {0.0, 100.0});
   s.sweep_step_deg = chain.getDouble("sweep_step_deg", s.sweep_step_deg, {0.1, 10.0});
   s.sweep_peaks = static_cast<int>(chain.getInt("sweep_peaks", s.sweep_peaks, {1, 100}));
   s.sweep_coarse_cells =

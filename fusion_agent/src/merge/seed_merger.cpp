@@ -288,7 +288,8 @@ std::vector<PlacedFit> SeedMerger::placedFits(const GridMap& from, const GridMap
   }
   const seed::SearchInputs inputs = searchInputs(from, to);
   for (const seed::Candidate& placed : placedFacing(T_to_from, others, inputs)) {
-    fits.push_back({placed.T_to_from, placed.similarity, placed.disagreement_rate});
+    fits.push_back(
+        {placed.T_to_from, placed.similarity, placed.disagreement_rate, placed.structure});
   }
   return fits;
 }

@@ -71,6 +71,10 @@ struct ChainSettings {
   std::vector<double> turned_rival_degrees = {90.0, 180.0, 270.0};
   double turned_rival_similarity = 1.5;  ///< least agr - dis of a turn, times the accepted's
   double turned_rival_rate = 1.5;        ///< most disagreement rate of a turn, times the accepted's
+  /// Where the accepted transform's walls meet walls less well than this (structure agreement,
+  /// both ways), a turn may disagree up to turned_rival_weak_rate times as often.
+  double turned_rival_weak_structure = 0.95;
+  double turned_rival_weak_rate = 2.2;  ///< most disagreement rate of a turn there, times
 };
 
 class ChainMerger : public MapMerger {

@@ -234,6 +234,7 @@ struct PlacedFit {
   GridTransform T_to_from;         ///< the placed transform
   long long similarity = 0;        ///< agr - dis on the search samples
   double disagreement_rate = 0.0;  ///< 1 - V over all known cells
+  double structure = 0.0;          ///< the lesser structure agreement of both ways (samples)
 };
 
 class SeedMerger : public MapMerger {
