@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -106,21 +107,28 @@ TEST(MergeChainTurnedRivalsTest, TheSettingsAreReadAndRangeChecked) {
                ConfigError);
 }
 
-TEST(MergeChainTurnedRivalsTest, ARoomThatExplainsMoreTurnedIsNotPlaced) {
-  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
+// Each pair is refused for the turn by default, and placed more than 45° from the truth by the
+// chain with `chain_section` (the check, or the part of it under test, off).
+template <std::size_t N>
+void expectRefusedForTheTurnAndTurnedWithout(const CropPair (&pairs)[N],
+                                             const std::string& chain_section) {
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  const std::unique_ptr<MapMerger> no_turns =
-      merge_test::chainFrom("chain: {turned_rival_degrees: []}\n");
-  for (const CropPair& pair : kQuarterTurnedRooms) {
+  const std::unique_ptr<MapMerger> without =
+      merge_test::chainFrom("chain: {" + chain_section + "}\n");
+  for (const CropPair& pair : pairs) {
     const MergeCase merge_case = merge_test::cut(pair);
     const MergeResult refused = chain->merge(merge_case.a, merge_case.b);
     EXPECT_TRUE(refusedForTheTurn(refused)) << "case " << pair.case_id << ": " << refused.reason;
-    // Without the check the room is placed a quarter turn from the truth.
-    const MergeResult wrong = no_turns->merge(merge_case.a, merge_case.b);
+    const MergeResult wrong = without->merge(merge_case.a, merge_case.b);
     EXPECT_TRUE(wrong.accepted) << "case " << pair.case_id << ": " << wrong.reason;
     EXPECT_GT(merge_test::angleErrorDeg(merge_case, wrong.T_to_from), 45.0)
         << "case " << pair.case_id;
   }
+}
+
+TEST(MergeChainTurnedRivalsTest, ARoomThatExplainsMoreTurnedIsNotPlaced) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
+  expectRefusedForTheTurnAndTurnedWithout(kQuarterTurnedRooms, "turned_rival_degrees: []");
 }
 
 TEST(MergeChainTurnedRivalsTest, ATurnThatFitsLessCleanlyLeavesTheTruthPlaced) {
@@ -140,19 +148,8 @@ TEST(MergeChainTurnedRivalsTest, ATurnThatFitsLessCleanlyLeavesTheTruthPlaced) {
 TEST(MergeChainTurnedRivalsTest, WeaklyWalledPlacementsFaceDirtierTurns) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
-  const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  const std::unique_ptr<MapMerger> one_rate_bar =
-      merge_test::chainFrom("chain: {turned_rival_weak_rate: 1.5}\n");
-  for (const CropPair& pair : kWeaklyWalledQuarterTurns) {
-    const MergeCase merge_case = merge_test::cut(pair);
-    const MergeResult refused = chain->merge(merge_case.a, merge_case.b);
-    EXPECT_TRUE(refusedForTheTurn(refused)) << "case " << pair.case_id << ": " << refused.reason;
-    // With the stricter bar alone the room is placed a quarter turn from the truth.
-    const MergeResult wrong = one_rate_bar->merge(merge_case.a, merge_case.b);
-    EXPECT_TRUE(wrong.accepted) << "case " << pair.case_id << ": " << wrong.reason;
-    EXPECT_GT(merge_test::angleErrorDeg(merge_case, wrong.T_to_from), 45.0)
-        << "case " << pair.case_id;
-  }
+  // With the stricter rate bar alone, the rooms are placed a quarter turn from the truth.
+  expectRefusedForTheTurnAndTurnedWithout(kWeaklyWalledQuarterTurns, "turned_rival_weak_rate: 1.5");
 }
 
 TEST(MergeChainTurnedRivalsTest, WellWalledPlacementsKeepTheStricterRateBar) {
