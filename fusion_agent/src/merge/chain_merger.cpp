@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mrslam/fusion/merge/approximate_pose.hpp"
 #include "mrslam/fusion/merge/dissimilarity.hpp"
 #include "mrslam/fusion/merge/global_search.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
@@ -179,15 +180,12 @@ Eigen::Vector2d overlapCentre(const GridMap& from, const GridMap& to,
   return count > 0.0 ? Eigen::Vector2d(sum / count) : knownCentroid(from);
 }
 
-/// T_to_from applied after `from` is turned by `turn_rad` about its cell `pivot`.
+/// T_to_from turned by `turn_rad` about `from`'s cell `pivot`: `pivot` stays where it lands.
 GridTransform turnedAbout(const GridTransform& T_to_from, const Eigen::Vector2d& pivot,
                           double turn_rad) {
-  GridTransform turn;
-  turn.theta_rad = turn_rad;
-  turn.t_cells = pivot - turn.apply(pivot);
   GridTransform turned;
   turned.theta_rad = T_to_from.theta_rad + turn_rad;
-  turned.t_cells = T_to_from.apply(turn.t_cells);
+  turned.t_cells = translationFromCentroids(turned.theta_rad, pivot, T_to_from.apply(pivot));
   return turned;
 }
 
