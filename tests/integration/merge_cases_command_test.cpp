@@ -93,6 +93,57 @@ TEST(MergeCasesCommandTest, RunsOnlyTheChosenCasesAndJudgesTheirTruth) {
   EXPECT_LT(judged["angle_error_deg"].get<double>(), 1.0);
 }
 
+TEST(MergeCasesCommandTest, CountsPerBandTheTruthsTheAcceptanceTakes) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
+  // Three cases of the default set (200 positive cases, seed 1), all at 40-60 % overlap: the
+  // truth of 181 is accepted where it is, that of 175 is accepted but slides 1.6 cells and 1.3
+  // degrees, and that of 40 is refused (a third of its overlapping walls miss).
+  const auto folder = scratchFolder("ceiling");
+  const CommandRun run = runToEnd("tools/mrslam_merge_cases",
+                                  {"--maps", sharedDataPath("maps"), "--methods", "", "--only",
+                                   "40,175,181", "--judge-truth", "--json"},
+                                  (folder / "cases.log").string(), 120.0);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json json = jsonLine(run.output);
+  ASSERT_FALSE(json.is_null()) << run.output;
+  const nlohmann::json& bands = json["truth_ceiling"]["bands"];
+  ASSERT_EQ(bands.size(), 3u);
+  EXPECT_EQ(bands[0]["cases"].get<int>(), 0);
+  EXPECT_EQ(bands[2]["cases"].get<int>(), 0);
+  const nlohmann::json& middle = bands[1];
+  EXPECT_EQ(middle["cases"].get<int>(), 3);
+  EXPECT_EQ(middle["accepted_within_tolerance"].get<int>(), 1) << middle.dump();
+  EXPECT_EQ(middle["accepted_outside_tolerance"].get<int>(), 1) << middle.dump();
+  EXPECT_EQ(middle["refused"].get<int>(), 1) << middle.dump();
+  EXPECT_NEAR(middle["rate"].get<double>(), 1.0 / 3.0, 1e-9);
+  // The counts agree with the judgements listed case by case.
+  int within = 0;
+  int outside = 0;
+  for (const nlohmann::json& judged : json["truth_judgements"]) {
+    const bool close = judged["distance_error_cells"].get<double>() <= 2.0 &&
+                       judged["angle_error_deg"].get<double>() <= 1.0;
+    within += judged["accepted"].get<bool>() && close;
+    outside += judged["accepted"].get<bool>() && !close;
+  }
+  EXPECT_EQ(within, 1);
+  EXPECT_EQ(outside, 1);
+}
+
+TEST(MergeCasesCommandTest, PrintsTheTruthRowOnlyWhenAsked) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
+  const auto folder = scratchFolder("ceiling_text");
+  const CommandRun judged = runCases({"--judge-truth"}, folder);
+  ASSERT_EQ(judged.exit_code, 0) << judged.output;
+  EXPECT_THAT(judged.output, ::testing::ContainsRegex("\ntruth +[0-9]+/[0-9]+ +[0-9]+/[0-9]+ +"
+                                                      "[0-9]+/[0-9]+ +\\(the exact truth"));
+  const CommandRun plain = runCases({}, folder);
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_THAT(plain.output, ::testing::Not(::testing::HasSubstr("\ntruth ")));
+  const nlohmann::json json = jsonOfRun({"--json"}, "ceiling_json");
+  ASSERT_FALSE(json.is_null());
+  EXPECT_FALSE(json.contains("truth_ceiling"));
+}
+
 TEST(MergeCasesCommandTest, SavesTheCropsAndCropAsWallsAtTheTruth) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
   const auto folder = scratchFolder("save");

@@ -10,8 +10,9 @@
 //
 // To look into single cases: `--only 40,125` runs only those, `--judge-truth` also judges each
 // case's exact truth by the seed acceptance alone (refused there: the acceptance or block 8 loses
-// the case, not the search), `--save DIR` writes each case's crops and crop B with crop A's walls
-// at the truth in red.
+// the case, not the search) and counts per band the truths accepted within the tolerance (the
+// most this acceptance can reach), `--save DIR` writes each case's crops and crop B with crop A's
+// walls at the truth in red.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -128,6 +129,14 @@ struct MethodTally {
   int negative_accepts = 0;
   std::vector<double> times_ms;
   nlohmann::json details = nlohmann::json::array();
+};
+
+/// `--judge-truth` per band: positive cases, and those whose exact truth the acceptance takes
+/// and keeps within the tolerance. No search is needed for those, so their share is the most a
+/// method with this acceptance can reach (its ceiling); the rest have overlaps that do not fix
+/// the transform for the acceptance even at the truth.
+struct TruthTally {
+  BandTally bands[kBands];
 };
 
 // How a crop was cut, as CropSpec holds it: enough to cut the same case again in a test.
@@ -251,10 +260,16 @@ bool isSelected(const std::vector<int>& ids, int id) {
 
 /// `--judge-truth`: the seed acceptance given the exact truth as its only hypothesis. A refusal
 /// there means the acceptance (or block 8 sliding away from it) loses the case, not the search.
-nlohmann::json judgeTruth(const MergeCase& merge_case, mrslam::fusion::SeedMerger& judge) {
+nlohmann::json judgeTruth(const MergeCase& merge_case, mrslam::fusion::SeedMerger& judge,
+                          TruthTally& tally) {
   const mrslam::fusion::MergeResult result =
       judge.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
   const mrslam::fusion::CaseError error = mrslam::fusion::caseError(merge_case, result.T_to_from);
+  BandTally& band = tally.bands[bandOf(merge_case.overlap)];
+  ++band.cases;
+  band.success += result.accepted && mrslam::fusion::isCorrect(error);
+  band.false_accepts += result.accepted && !mrslam::fusion::isCorrect(error);
+  band.refused += !result.accepted;
   return {{"case", merge_case.id},
           {"overlap", merge_case.overlap},
           {"accepted", result.accepted},
@@ -273,6 +288,30 @@ void printTruthJudgement(const nlohmann::json& judged) {
             << std::setprecision(2) << judged["distance_error_cells"].get<double>() << " cells and "
             << judged["angle_error_deg"].get<double>() << " deg from it" << std::defaultfloat
             << (reason.empty() ? "" : " (" + reason + ")") << '\n';
+}
+
+nlohmann::json toJson(const TruthTally& tally) {
+  nlohmann::json bands = nlohmann::json::array();
+  for (int b = 0; b < kBands; ++b) {
+    const BandTally& band = tally.bands[b];
+    bands.push_back({{"overlap", {(2 + 2 * b) / 10.0, (4 + 2 * b) / 10.0}},
+                     {"cases", band.cases},
+                     {"accepted_within_tolerance", band.success},
+                     {"rate", band.cases == 0 ? 0.0 : double(band.success) / band.cases},
+                     {"accepted_outside_tolerance", band.false_accepts},
+                     {"refused", band.refused}});
+  }
+  return {{"bands", bands}};
+}
+
+void printTruthCeiling(const TruthTally& tally) {
+  std::cout << std::left << std::setw(10) << "truth";
+  for (const BandTally& band : tally.bands) {
+    std::ostringstream cell;
+    cell << band.success << "/" << band.cases;
+    std::cout << std::setw(12) << cell.str();
+  }
+  std::cout << "(the exact truth judged alone: accepted within 2 cells and 1 deg)\n";
 }
 
 /// `--save`: case_<id>_a.png, case_<id>_b.png and case_<id>_truth.png (crop B with crop A's
@@ -295,13 +334,6 @@ void saveCasePictures(const MergeCase& merge_case, const fs::path& folder) {
       }
     }
   }
-  int hits = 0, inside = 0;
-  for (const auto& c : walls_of_a.cells) {
-    if (merge_case.b.geometry.contains(c.x(), c.y())) {
-      ++inside;
-      hits += merge_case.b.at(c.x(), c.y()) > 50;
-    }
-  }
   mrslam::saveMapPng(merge_case.b, stem + "_truth.png", {walls_of_a});
 }
 
@@ -312,6 +344,7 @@ int run(const CasesOptions& options) {
   std::vector<int> only;
   std::unique_ptr<mrslam::fusion::SeedMerger> truth_judge;
   nlohmann::json truth_judgements = nlohmann::json::array();
+  TruthTally truth_tally;
   try {
     only = parseCaseIds(options.only);
     const mrslam::Config config = options.config.empty()
@@ -342,7 +375,7 @@ int run(const CasesOptions& options) {
       saveCasePictures(merge_case, options.save_dir);
     }
     if (truth_judge && merge_case.positive) {
-      truth_judgements.push_back(judgeTruth(merge_case, *truth_judge));
+      truth_judgements.push_back(judgeTruth(merge_case, *truth_judge, truth_tally));
     }
     for (std::size_t m = 0; m < mergers.size(); ++m) {
       scoreCase(merge_case, *mergers[m], tallies[m]);
@@ -362,6 +395,7 @@ int run(const CasesOptions& options) {
                            {"methods", methods}};
     if (options.judge_truth) {
       json["truth_judgements"] = truth_judgements;
+      json["truth_ceiling"] = toJson(truth_tally);
     }
     std::cout << json.dump() << '\n';
   } else {
@@ -369,6 +403,9 @@ int run(const CasesOptions& options) {
       printTruthJudgement(judged);
     }
     printTable(tallies);
+    if (options.judge_truth) {
+      printTruthCeiling(truth_tally);
+    }
   }
   return 0;
 }
@@ -399,8 +436,9 @@ int main(int argc, char** argv) {
   app.add_flag("--details", options.details, "with --json: every case's result too");
   app.add_option("--only", options.only, "comma-separated case ids: run only these");
   app.add_flag("--judge-truth", options.judge_truth,
-               "judge each positive case's exact truth by the seed acceptance alone (with --json: "
-               "truth_judgements)");
+               "judge each positive case's exact truth by the seed acceptance alone and count "
+               "per band those accepted within the tolerance (with --json: truth_judgements, "
+               "truth_ceiling)");
   app.add_option("--save", options.save_dir,
                  "folder: write each run case's crops and crop B with A's walls at the truth");
   app.set_version_flag("--version", mrslam::versionLine("merge_cases"));
