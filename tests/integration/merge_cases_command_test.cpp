@@ -95,13 +95,13 @@ TEST(MergeCasesCommandTest, RunsOnlyTheChosenCasesAndJudgesTheirTruth) {
 
 TEST(MergeCasesCommandTest, CountsPerBandTheTruthsTheAcceptanceTakes) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
-  // Three cases of the default set (200 positive cases, seed 1), all at 40-60 % overlap: the
-  // truth of 181 is accepted where it is, that of 175 is accepted but slides 1.6 cells and 1.3
-  // degrees, and that of 40 is refused (a third of its overlapping walls miss).
+  // Three cases of set 37 (200 positive cases), all at 40-60 % overlap: the truth of 7 is
+  // accepted where it is, that of 127 is accepted but slides 3.7 cells and 1.3 degrees, and that
+  // of 70 is refused (no wall of its overlap meets a wall: open floor).
   const auto folder = scratchFolder("ceiling");
   const CommandRun run = runToEnd("tools/mrslam_merge_cases",
-                                  {"--maps", sharedDataPath("maps"), "--methods", "", "--only",
-                                   "40,175,181", "--judge-truth", "--json"},
+                                  {"--maps", sharedDataPath("maps"), "--methods", "", "--seed",
+                                   "37", "--only", "7,70,127", "--judge-truth", "--json"},
                                   (folder / "cases.log").string(), 120.0);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const nlohmann::json json = jsonLine(run.output);
@@ -127,6 +127,38 @@ TEST(MergeCasesCommandTest, CountsPerBandTheTruthsTheAcceptanceTakes) {
   }
   EXPECT_EQ(within, 1);
   EXPECT_EQ(outside, 1);
+}
+
+/// The one truth judgement of case `id` (seed 1, 200 cases) with the given merger config.
+nlohmann::json truthOfCase(const char* id, const std::string& config_text, const char* name) {
+  const auto folder = scratchFolder(name);
+  const std::string config = (folder / "merge.yaml").string();
+  std::ofstream(config) << config_text;
+  const CommandRun run = runToEnd("tools/mrslam_merge_cases",
+                                  {"--maps", sharedDataPath("maps"), "--methods", "", "--only", id,
+                                   "--judge-truth", "--json", "--config", config},
+                                  (folder / "cases.log").string(), 120.0);
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json json = jsonLine(run.output);
+  if (json.is_null() || json["truth_judgements"].size() != 1u) {
+    ADD_FAILURE() << run.output;
+    return nullptr;
+  }
+  return json["truth_judgements"][0];
+}
+
+TEST(MergeCasesCommandTest, TheTruthFacesTheTurnCheckEveryMergerEndsWith) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
+  // Case 175 of set 1: walls along one side of open floor; turned by 3 degrees they meet as well.
+  const nlohmann::json checked = truthOfCase("175", "seed: {}\n", "turn_checked");
+  ASSERT_FALSE(checked.is_null());
+  EXPECT_FALSE(checked["accepted"].get<bool>());
+  EXPECT_THAT(checked["reason"].get<std::string>(),
+              ::testing::HasSubstr("do not fix the rotation"));
+  const nlohmann::json unchecked =
+      truthOfCase("175", "seed: {max_wall_turn_share: 1.0}\n", "turn_unchecked");
+  ASSERT_FALSE(unchecked.is_null());
+  EXPECT_TRUE(unchecked["accepted"].get<bool>()) << unchecked.dump();
 }
 
 TEST(MergeCasesCommandTest, PrintsTheTruthRowOnlyWhenAsked) {

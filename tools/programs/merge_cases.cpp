@@ -34,6 +34,7 @@
 #include "mrslam/fusion/merge/merger_registry.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
+#include "mrslam/fusion/merge/wall_alignment.hpp"
 
 namespace {
 
@@ -258,12 +259,15 @@ bool isSelected(const std::vector<int>& ids, int id) {
   return ids.empty() || std::find(ids.begin(), ids.end(), id) != ids.end();
 }
 
-/// `--judge-truth`: the seed acceptance given the exact truth as its only hypothesis. A refusal
-/// there means the acceptance (or block 8 sliding away from it) loses the case, not the search.
+/// `--judge-truth`: the seed acceptance given the exact truth as its only hypothesis, then the
+/// alignment and turn check every merger ends with. A refusal there means the acceptance (or
+/// block 8 sliding away from it) loses the case, not the search.
 nlohmann::json judgeTruth(const MergeCase& merge_case, mrslam::fusion::SeedMerger& judge,
                           TruthTally& tally) {
-  const mrslam::fusion::MergeResult result =
+  mrslam::fusion::MergeResult result =
       judge.judgeHypotheses(merge_case.a, merge_case.b, {merge_case.T_b_a});
+  mrslam::fusion::alignAccepted(merge_case.a, merge_case.b, judge.settings().wall_alignment,
+                                judge.settings().similarity, result);
   const mrslam::fusion::CaseError error = mrslam::fusion::caseError(merge_case, result.T_to_from);
   BandTally& band = tally.bands[bandOf(merge_case.overlap)];
   ++band.cases;
