@@ -193,18 +193,23 @@ double percentile(std::vector<double> values, double fraction) {
   return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
 }
 
+/// Band `b`'s counts, its right and wrong accepts under the given names.
+nlohmann::json bandJson(int b, const BandTally& band, const char* right_name,
+                        const char* wrong_name) {
+  return {{"overlap", {(2 + 2 * b) / 10.0, (4 + 2 * b) / 10.0}},
+          {"cases", band.cases},
+          {right_name, band.success},
+          {"rate", band.cases == 0 ? 0.0 : double(band.success) / band.cases},
+          {wrong_name, band.false_accepts},
+          {"refused", band.refused}};
+}
+
 nlohmann::json toJson(const MethodTally& tally, bool details) {
   nlohmann::json bands = nlohmann::json::array();
   int false_accepts = 0;
   for (int b = 0; b < kBands; ++b) {
-    const BandTally& band = tally.bands[b];
-    false_accepts += band.false_accepts;
-    bands.push_back({{"overlap", {(2 + 2 * b) / 10.0, (4 + 2 * b) / 10.0}},
-                     {"cases", band.cases},
-                     {"success", band.success},
-                     {"rate", band.cases == 0 ? 0.0 : double(band.success) / band.cases},
-                     {"false_accepts", band.false_accepts},
-                     {"refused", band.refused}});
+    false_accepts += tally.bands[b].false_accepts;
+    bands.push_back(bandJson(b, tally.bands[b], "success", "false_accepts"));
   }
   nlohmann::json json = {
       {"bands", bands},
@@ -297,13 +302,8 @@ void printTruthJudgement(const nlohmann::json& judged) {
 nlohmann::json toJson(const TruthTally& tally) {
   nlohmann::json bands = nlohmann::json::array();
   for (int b = 0; b < kBands; ++b) {
-    const BandTally& band = tally.bands[b];
-    bands.push_back({{"overlap", {(2 + 2 * b) / 10.0, (4 + 2 * b) / 10.0}},
-                     {"cases", band.cases},
-                     {"accepted_within_tolerance", band.success},
-                     {"rate", band.cases == 0 ? 0.0 : double(band.success) / band.cases},
-                     {"accepted_outside_tolerance", band.false_accepts},
-                     {"refused", band.refused}});
+    bands.push_back(
+        bandJson(b, tally.bands[b], "accepted_within_tolerance", "accepted_outside_tolerance"));
   }
   return {{"bands", bands}};
 }
