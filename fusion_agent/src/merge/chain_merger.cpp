@@ -9,19 +9,12 @@
 #include "mrslam/fusion/merge/global_search.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
 #include "mrslam/fusion/merge/random_walk.hpp"
+#include "mrslam/fusion/merge/reason_text.hpp"
 #include "mrslam/fusion/merge/similarity.hpp"
 
 namespace mrslam::fusion {
 
 namespace {
-
-// A figure of a refusal's reason, to 3 significant digits.
-std::string describe(double value) {
-  std::ostringstream text;
-  text.precision(3);
-  text << value;
-  return text.str();
-}
 
 // 1 - V over the overlap; 1 with no overlap.
 double disagreementRate(const OverlapScore& overlap) {
@@ -130,7 +123,7 @@ void ChainMerger::judgeAgainstEarlier(const GridMap& from, const GridMap& to,
   if (share > judge_.settings().max_rival_share) {
     result.accepted = false;
     result.reason = "a transform an earlier step refused explains the overlap almost as well (" +
-                    describe(share) + " of this one)";
+                    reasonFigure(share) + " of this one)";
   }
 }
 
@@ -213,11 +206,12 @@ void ChainMerger::judgeAgainstTurns(const GridMap& from, const GridMap& to, Merg
     if (similarity >= settings_.turned_rival_similarity && as_clean) {
       const std::string rate =
           accepted.disagreement_rate > 0.0
-              ? describe(fits[i].disagreement_rate / accepted.disagreement_rate) + " times as often"
+              ? reasonFigure(fits[i].disagreement_rate / accepted.disagreement_rate) +
+                    " times as often"
               : "no more often";
       result.accepted = false;
       result.reason = "the overlap turned about its centre explains more of it about as cleanly (" +
-                      describe(similarity) + " times agr - dis, its cells disagreeing " + rate +
+                      reasonFigure(similarity) + " times agr - dis, its cells disagreeing " + rate +
                       "): the rotation is not fixed";
       return;
     }

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
+#include "mrslam/fusion/merge/reason_text.hpp"
 #include "mrslam/fusion/merge/wall_balance.hpp"
 #include "seed_stages.hpp"
 
@@ -20,13 +20,6 @@ void lap(Clock::time_point& start, SeedMergeTimings::Duration& total) {
   const Clock::time_point now = Clock::now();
   total += now - start;
   start = now;
-}
-
-std::string describe(double value, int precision = 3) {
-  std::ostringstream text;
-  text.precision(precision);
-  text << value;
-  return text.str();
 }
 
 // Why two maps cannot be merged at all, or empty.
@@ -498,50 +491,51 @@ SeedMerger::Refusal SeedMerger::refusal(const seed::Refined& refined) const {
                                         std::to_string(settings_.min_overlap_cells)};
   }
   if (verification < settings_.min_verification_v) {
-    return {MergeRefusal::kVerification, "verification index " + describe(verification) +
-                                             " is below " + describe(settings_.min_verification_v)};
+    return {MergeRefusal::kVerification, "verification index " + reasonFigure(verification) +
+                                             " is below " +
+                                             reasonFigure(settings_.min_verification_v)};
   }
   if (refined.stage == seed::Stage::kFineGlobalSearch &&
       verification < settings_.global_fine_min_verification) {
-    return {MergeRefusal::kVerification, "verification index " + describe(verification) +
+    return {MergeRefusal::kVerification, "verification index " + reasonFigure(verification) +
                                              " of a finer sweep's transform is below " +
-                                             describe(settings_.global_fine_min_verification)};
+                                             reasonFigure(settings_.global_fine_min_verification)};
   }
   if (refined.stage == seed::Stage::kFreeGlobalSearch &&
       verification < settings_.global_free_min_verification) {
-    return {MergeRefusal::kVerification, "verification index " + describe(verification) +
+    return {MergeRefusal::kVerification, "verification index " + reasonFigure(verification) +
                                              " of a transform found with free agreement is below " +
-                                             describe(settings_.global_free_min_verification)};
+                                             reasonFigure(settings_.global_free_min_verification)};
   }
   if (refined.rank >= static_cast<std::size_t>(settings_.late_rank) &&
       verification < settings_.late_rank_min_verification) {
-    return {MergeRefusal::kVerification, "verification index " + describe(verification) +
+    return {MergeRefusal::kVerification, "verification index " + reasonFigure(verification) +
                                              " of the candidate ranked " +
                                              std::to_string(refined.rank + 1) + " is below " +
-                                             describe(settings_.late_rank_min_verification)};
+                                             reasonFigure(settings_.late_rank_min_verification)};
   }
   if (refined.structure < settings_.min_structure_agreement) {
-    return {MergeRefusal::kStructure, "only " + describe(refined.structure) +
+    return {MergeRefusal::kStructure, "only " + reasonFigure(refined.structure) +
                                           " of the overlapping walls meet walls (below " +
-                                          describe(settings_.min_structure_agreement) + ")"};
+                                          reasonFigure(settings_.min_structure_agreement) + ")"};
   }
   if (entropyDisagrees(refined)) {
     return {MergeRefusal::kEntropy, "the entropy minimum lies " +
-                                        describe(refined.entropy_gap_cells) +
+                                        reasonFigure(refined.entropy_gap_cells) +
                                         " cells from the best similarity"};
   }
   if (!translationFixed(refined)) {
     return {MergeRefusal::kTranslation,
             "the overlap does not fix the translation: a shift of " +
                 std::to_string(kRunnerUpCells) + " cells or more scores " +
-                describe(refined.translation_ambiguity) + " of the best (walls " +
-                describe(refined.wall_ambiguity) + ", ahead by " +
+                reasonFigure(refined.translation_ambiguity) + " of the best (walls " +
+                reasonFigure(refined.wall_ambiguity) + ", ahead by " +
                 std::to_string(refined.wall_margin) + " sampled walls; agr - dis " +
-                describe(refined.similarity_ambiguity) + ")"};
+                reasonFigure(refined.similarity_ambiguity) + ")"};
   }
   if (refined.rival_share > settings_.max_rival_share) {
     return {MergeRefusal::kRival, "another transform explains the overlap almost as well (" +
-                                      describe(refined.rival_share) + " of the best)"};
+                                      reasonFigure(refined.rival_share) + " of the best)"};
   }
   return {};
 }
