@@ -79,8 +79,12 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
   MergeResult last;
   std::vector<GridTransform> earlier;   // transforms earlier steps refused for a slide alone
   std::vector<GridTransform> searched;  // every step's search hypotheses so far
+  SecondOpinion second;                 // the second-opinion step's result, when it ran already
   for (const auto& step : steps_) {
-    MergeResult result = step->merge(from, to);
+    MergeResult result = step.get() == second.step ? second.result : step->merge(from, to);
+    if (step->name() == settings_.second_opinion_step) {
+      second = {step.get(), result};
+    }
     trials += result.trials;
     searched.insert(searched.end(), result.hypotheses.begin(), result.hypotheses.end());
     if (result.accepted && !earlier.empty()) {
@@ -96,6 +100,9 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
         (settings_.cleaner_alternative_rate > 0.0 || settings_.slid_alternative_rate > 0.0 ||
          settings_.walls_alternative_rate > 0.0)) {
       judgeAgainstAlternatives(from, to, searched, result);
+    }
+    if (result.accepted) {
+      askSecondOpinion(from, to, *step, second, result);
     }
     if (result.accepted) {
       result.trials = trials;
@@ -218,6 +225,36 @@ void ChainMerger::judgeAgainstTurns(const GridMap& from, const GridMap& to, Merg
   }
 }
 
+void ChainMerger::askSecondOpinion(const GridMap& from, const GridMap& to,
+                                   const MapMerger& accepting, SecondOpinion& second,
+                                   MergeResult& result) {
+  const auto asked = std::find_if(steps_.begin(), steps_.end(), [&](const auto& step) {
+    return step->name() == settings_.second_opinion_step;
+  });
+  if (asked == steps_.end() || asked->get() == &accepting ||
+      result.wall_turn_share < settings_.second_opinion_turn_share) {
+    return;
+  }
+  if (second.step == nullptr) {
+    second = {asked->get(), (*asked)->merge(from, to)};
+  }
+  const MergeResult& opinion = second.result;
+  if (opinion.accepted || opinion.refusal != MergeRefusal::kRotation) {
+    return;
+  }
+  const Eigen::Vector2d pivot = overlapCentre(from, to, result.T_to_from);
+  const double cells = cellsApartAt(opinion.T_to_from, result.T_to_from, pivot);
+  const double turn_deg = turnBetween(opinion.T_to_from, result.T_to_from) * 180.0 / M_PI;
+  if (cells > settings_.second_opinion_cells || turn_deg > settings_.second_opinion_deg) {
+    return;
+  }
+  result.accepted = false;
+  result.refusal = MergeRefusal::kRotation;
+  result.reason = "the " + settings_.second_opinion_step + " step places the overlap " +
+                  reasonFigure(cells) + " cells and " + reasonFigure(turn_deg) +
+                  " degrees away, where " + opinion.reason + ": the rotation is not fixed";
+}
+
 ChainMerger::AlternativeBar ChainMerger::alternativeBar(const MergeResult& alone) const {
   if (alone.accepted) {
     return {settings_.cleaner_alternative_rate, 0.0};
@@ -333,6 +370,12 @@ ChainSettings loadChainSettings(const Config& chain) {
   s.alternative_cells = chain.getDouble("alternative_cells", s.alternative_cells, {0.0, 1000.0});
   s.alternative_prefilter_rate =
       chain.getDouble("alternative_prefilter_rate", s.alternative_prefilter_rate, {0.0, 100.0});
+  s.second_opinion_step = chain.getString("second_opinion_step", s.second_opinion_step);
+  s.second_opinion_cells =
+      chain.getDouble("second_opinion_cells", s.second_opinion_cells, {0.0, 1000.0});
+  s.second_opinion_deg = chain.getDouble("second_opinion_deg", s.second_opinion_deg, {0.0, 180.0});
+  s.second_opinion_turn_share =
+      chain.getDouble("second_opinion_turn_share", s.second_opinion_turn_share, {0.0, 1.0});
   return s;
 }
 

@@ -43,6 +43,14 @@ bool sameTransform(const GridTransform& a, const GridTransform& b) {
 SeedMerger::SeedMerger(const SeedMergerSettings& settings)
     : settings_(settings), tables_(settings.similarity) {}
 
+std::shared_ptr<const seed::SearchInputs> SeedMerger::searchInputsOf(const GridMap& from,
+                                                                     const GridMap& to) {
+  if (!last_inputs_.inputs || last_inputs_.from != from || last_inputs_.to != to) {
+    last_inputs_ = {from, to, std::make_shared<const seed::SearchInputs>(searchInputs(from, to))};
+  }
+  return last_inputs_.inputs;
+}
+
 seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& to) const {
   seed::SearchInputs inputs;
   inputs.all_samples = knownCells(from, tables_);
@@ -210,7 +218,8 @@ MergeResult SeedMerger::judgeHypotheses(const GridMap& from, const GridMap& to,
   for (const GridTransform& T_to_from : hypotheses) {
     given.push_back({T_to_from, -static_cast<double>(given.size()), seed::Stage::kGiven});
   }
-  const seed::SearchInputs inputs = searchInputs(from, to);
+  const std::shared_ptr<const seed::SearchInputs> held = searchInputsOf(from, to);
+  const seed::SearchInputs& inputs = *held;
   const std::vector<seed::Candidate> candidates =
       seed::searchCandidates(given, static_cast<int>(given.size()), inputs, tables_, settings_);
   seed::Refined refined = refineBest(candidates, inputs);
@@ -229,7 +238,8 @@ double SeedMerger::rivalShareAgainst(const GridMap& from, const GridMap& to,
   if (!inputRefusal(from, to).empty() || others.empty()) {
     return 0.0;
   }
-  const seed::SearchInputs inputs = searchInputs(from, to);
+  const std::shared_ptr<const seed::SearchInputs> held = searchInputsOf(from, to);
+  const seed::SearchInputs& inputs = *held;
   std::vector<seed::Candidate> facing = placedFacing(T_to_from, others, inputs);
   if (facing.empty()) {
     return 0.0;
@@ -255,7 +265,8 @@ bool SeedMerger::cleanerRivalAmong(const GridMap& from, const GridMap& to,
   if (!inputRefusal(from, to).empty() || others.empty()) {
     return false;
   }
-  const seed::SearchInputs inputs = searchInputs(from, to);
+  const std::shared_ptr<const seed::SearchInputs> held = searchInputsOf(from, to);
+  const seed::SearchInputs& inputs = *held;
   std::vector<seed::Candidate> facing = placedFacing(T_to_from, others, inputs);
   for (int check = 0; !facing.empty() && check <= settings_.refined_rivals; ++check) {
     const std::optional<std::size_t> rival = seed::cleanerRivalOf(facing, inputs, settings_);
@@ -279,7 +290,8 @@ std::vector<PlacedFit> SeedMerger::placedFits(const GridMap& from, const GridMap
   if (!inputRefusal(from, to).empty()) {
     return fits;
   }
-  const seed::SearchInputs inputs = searchInputs(from, to);
+  const std::shared_ptr<const seed::SearchInputs> held = searchInputsOf(from, to);
+  const seed::SearchInputs& inputs = *held;
   for (const seed::Candidate& placed : placedFacing(T_to_from, others, inputs)) {
     fits.push_back(
         {placed.T_to_from, placed.similarity, placed.disagreement_rate, placed.structure});

@@ -431,12 +431,14 @@ void refuseUnlessTurnFixed(const WallField& from, const WallField& to,
     return;
   }
   const double share = wallTurnShare(from, to, result.T_to_from, settings);
+  result.wall_turn_share = share;
   if (share >= settings.max_turn_share) {
     std::ostringstream reason;
     reason.precision(3);
     reason << "the walls of the overlap do not fix the rotation: turned by "
            << settings.turn_check_deg << " degrees they meet " << share << " as well";
     result.accepted = false;
+    result.refusal = MergeRefusal::kRotation;
     result.reason = reason.str();
   }
 }

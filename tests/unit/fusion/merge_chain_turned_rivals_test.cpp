@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -181,6 +182,30 @@ TEST(MergeChainTurnedRivalsTest, PlacedFitsPutTheTransformFirstAndNeedComparable
   GridMap coarser = merge_case.b;
   coarser.geometry.resolution_m *= 2.0;
   EXPECT_TRUE(judge.placedFits(merge_case.a, coarser, merge_case.T_b_a, {turned}).empty());
+}
+
+TEST(MergeChainTurnedRivalsTest, PlacedFitsFollowTheMapsAsked) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
+  // The judge keeps the search inputs of the last pair of maps; a map changed in place (the same
+  // object, as a fusion agent's store updates it) must not see them.
+  const MergeCase merge_case = merge_test::cut(kTruthsWithDirtierTurns[0]);
+  SeedMerger judge;
+  GridMap to = merge_case.b;
+  const std::vector<PlacedFit> first = judge.placedFits(merge_case.a, to, merge_case.T_b_a, {});
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_GT(first.front().structure, 0.9);
+  for (std::int8_t& cell : to.cells) {
+    cell = cell > GridMap::kFree ? GridMap::kFree : cell;  // the walls gone
+  }
+  const std::vector<PlacedFit> changed = judge.placedFits(merge_case.a, to, merge_case.T_b_a, {});
+  ASSERT_EQ(changed.size(), 1u);
+  EXPECT_LT(changed.front().structure, 0.1);
+  to = merge_case.b;
+  const std::vector<PlacedFit> again = judge.placedFits(merge_case.a, to, merge_case.T_b_a, {});
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again.front().similarity, first.front().similarity);
+  EXPECT_DOUBLE_EQ(again.front().structure, first.front().structure);
+  EXPECT_DOUBLE_EQ(again.front().disagreement_rate, first.front().disagreement_rate);
 }
 
 }  // namespace

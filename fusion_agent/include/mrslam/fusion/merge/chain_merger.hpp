@@ -15,7 +15,10 @@
 // `walls_alternative_rate`, so does one refused alone only by the structure test that fits more
 // cleanly over more known cells (`walls_alternative_overlap`). With `turned_rival_degrees`, the
 // overlap turned by a quarter or a half about its centre and placed again refuses the merge when
-// it explains clearly more of it about as cleanly (a room that fits turned as well).
+// it explains clearly more of it about as cleanly (a room that fits turned as well). With
+// `second_opinion_step`, a transform whose turn check came near its bar is refused when that step
+// (the seed pipeline), run as well, ends within the wall alignment's window of it and finds there
+// that the walls do not fix the rotation.
 
 #include <cmath>
 #include <memory>
@@ -75,6 +78,19 @@ struct ChainSettings {
   /// both ways), a turn may disagree up to turned_rival_weak_rate times as often.
   double turned_rival_weak_structure = 0.95;
   double turned_rival_weak_rate = 2.2;  ///< most disagreement rate of a turn there, times
+  /// After another step accepts, this step of the chain (empty or not in the chain: off) is run as
+  /// well. Where it refuses because the walls do not fix the rotation (MergeRefusal::kRotation) at
+  /// a placement within second_opinion_cells and second_opinion_deg of the accepted one, the
+  /// accepted transform is refused too: two searches end at the same overlap (within the wall
+  /// alignment's window of ±2.5 cells and ±1.5°), and its walls fix the rotation at one of them
+  /// only (the turn check's share lies near its bar there). A placement farther away is another
+  /// answer, refused on its own, and says nothing of the accepted one.
+  std::string second_opinion_step = "seed";
+  double second_opinion_cells = 2.5;  ///< ... at most this far apart at the overlap's centre
+  double second_opinion_deg = 1.5;    ///< ... and turned at most this much (degrees)
+  /// The step is asked only where the accepted transform's turn check came near its bar: a turn
+  /// keeps at least this share of the walls' agreement (MergeResult::wall_turn_share).
+  double second_opinion_turn_share = 0.9;
 };
 
 class ChainMerger : public MapMerger {
@@ -97,6 +113,17 @@ class ChainMerger : public MapMerger {
   /// With turned_rival_degrees: refuses the accepted `result` when a turned copy of it explains
   /// more of the overlap about as cleanly.
   void judgeAgainstTurns(const GridMap& from, const GridMap& to, MergeResult& result);
+
+  /// The second-opinion step and its result, once it ran in a merge (it runs once).
+  struct SecondOpinion {
+    MapMerger* step = nullptr;
+    MergeResult result;
+  };
+  /// With second_opinion_step: that step's result (run into `second` unless it ran already) after
+  /// `accepting` accepted `result`; refuses `result` when that step refused a placement near it
+  /// for the turn check.
+  void askSecondOpinion(const GridMap& from, const GridMap& to, const MapMerger& accepting,
+                        SecondOpinion& second, MergeResult& result);
 
   /// What an alternative must meet to refuse the accepted transform: disagree at most `rate`
   /// times as often (0: no bar), over at least `overlap` times as many known cells.

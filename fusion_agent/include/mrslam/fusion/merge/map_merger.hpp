@@ -74,6 +74,7 @@ enum class MergeRefusal {
   kEntropy,       ///< the entropy minimum lies away from the best similarity
   kTranslation,   ///< the overlap does not fix the translation (a slide scores almost as well)
   kRival,         ///< another transform elsewhere explains the overlap almost as well
+  kRotation,      ///< the overlap's walls meet as well turned (the wall alignment's turn check)
 };
 
 /// What a merge found, or why it refused.
@@ -87,6 +88,9 @@ struct MergeResult {
   std::string reason;         ///< why it refused; empty when accepted
   /// When refused by block 9's acceptance: the test that refused T_to_from.
   MergeRefusal refusal = MergeRefusal::kUnspecified;
+  /// The wall alignment's turn check at T_to_from: the share of the walls' agreement kept turned
+  /// (wallTurnShare); 0 where the check did not run.
+  double wall_turn_share = 0.0;
   /// The hypotheses the merger's own search found before judging them (the exhaustive search's,
   /// best first; empty for the others): a chain weighs them as alternatives to what it accepts.
   std::vector<GridTransform> hypotheses;

@@ -101,6 +101,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -331,10 +332,20 @@ class SeedMerger : public MapMerger {
   /// Whether the least merged entropy lies too far from the best similarity to accept.
   bool entropyDisagrees(const seed::Refined& refined) const;
   seed::SearchInputs searchInputs(const GridMap& from, const GridMap& to) const;
+  /// searchInputs() of the last pair of maps asked for, built again only for another pair: a
+  /// chain judges many transforms of one pair in turn (judgeHypotheses, placedFits, ...). The
+  /// caller holds what it is given while it uses it.
+  std::shared_ptr<const seed::SearchInputs> searchInputsOf(const GridMap& from, const GridMap& to);
 
   const SeedMergerSettings settings_;
   const ComparisonTables tables_;
   SeedMergeTimings timings_;
+  struct InputsOfPair {
+    GridMap from;
+    GridMap to;
+    std::shared_ptr<const seed::SearchInputs> inputs;
+  };
+  InputsOfPair last_inputs_;  ///< what searchInputsOf() returns for the same maps again
 };
 
 /// The result of a merger whose hypotheses (`found`) are judged by `judge`'s acceptance
