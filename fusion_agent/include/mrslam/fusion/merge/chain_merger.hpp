@@ -81,13 +81,13 @@ struct ChainSettings {
   /// After another step accepts, this step of the chain (empty or not in the chain: off) is run as
   /// well. Where it refuses because the walls do not fix the rotation (MergeRefusal::kRotation) at
   /// a placement within second_opinion_cells and second_opinion_deg of the accepted one, the
-  /// accepted transform is refused too: two searches end at the same overlap (within the wall
-  /// alignment's window of ±2.5 cells and ±1.5°), and its walls fix the rotation at one of them
-  /// only (the turn check's share lies near its bar there). A placement farther away is another
-  /// answer, refused on its own, and says nothing of the accepted one.
+  /// accepted transform is refused too: two searches end at the same overlap (the wall
+  /// alignment's windows about them, ±2.5 cells and ±1.5° each, meet), and its walls fix the
+  /// rotation at one of them only (the turn check's share lies near its bar there). A placement
+  /// farther away is another answer, refused on its own, and says nothing of the accepted one.
   std::string second_opinion_step = "seed";
-  double second_opinion_cells = 2.5;  ///< ... at most this far apart at the overlap's centre
-  double second_opinion_deg = 1.5;    ///< ... and turned at most this much (degrees)
+  double second_opinion_cells = 5.0;  ///< ... at most this far apart at the overlap's centre
+  double second_opinion_deg = 3.0;    ///< ... and turned at most this much (degrees)
   /// The step is asked only where the accepted transform's turn check came near its bar: a turn
   /// keeps at least this share of the walls' agreement (MergeResult::wall_turn_share).
   double second_opinion_turn_share = 0.9;
