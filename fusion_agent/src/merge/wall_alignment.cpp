@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
+
+#include "mrslam/fusion/merge/reason_text.hpp"
 
 namespace mrslam::fusion {
 
@@ -433,13 +434,11 @@ void refuseUnlessTurnFixed(const WallField& from, const WallField& to,
   const double share = wallTurnShare(from, to, result.T_to_from, settings);
   result.wall_turn_share = share;
   if (share >= settings.max_turn_share) {
-    std::ostringstream reason;
-    reason.precision(3);
-    reason << "the walls of the overlap do not fix the rotation: turned by "
-           << settings.turn_check_deg << " degrees they meet " << share << " as well";
     result.accepted = false;
     result.refusal = MergeRefusal::kRotation;
-    result.reason = reason.str();
+    result.reason = "the walls of the overlap do not fix the rotation: turned by " +
+                    reasonFigure(settings.turn_check_deg) + " degrees they meet " +
+                    reasonFigure(share) + " as well";
   }
 }
 

@@ -85,11 +85,20 @@ class CountedSeedMerger : public MapMerger {
   int& runs_;
 };
 
-ChainMerger exhaustiveThenCountedSeed(int& seed_runs, const ChainSettings& settings = {}) {
+ChainMerger exhaustiveThenCountedSeed(int& seed_runs) {
   std::vector<std::unique_ptr<MapMerger>> steps;
   steps.push_back(std::make_unique<ExhaustiveMerger>());
   steps.push_back(std::make_unique<CountedSeedMerger>(seed_runs));
-  return ChainMerger(std::move(steps), settings);
+  return ChainMerger(std::move(steps));
+}
+
+// The default chain's result on `pair` and how often it ran the seed step.
+std::pair<MergeResult, int> mergeCountingSeedRuns(const CropPair& pair) {
+  const MergeCase merge_case = merge_test::cut(pair);
+  int runs = 0;
+  ChainMerger chain = exhaustiveThenCountedSeed(runs);
+  MergeResult result = chain.merge(merge_case.a, merge_case.b);
+  return {std::move(result), runs};
 }
 
 TEST(MergeChainSecondOpinionTest, TheSettingsAreReadAndRangeChecked) {
@@ -160,29 +169,20 @@ TEST(MergeChainSecondOpinionTest, TheSeedStepRunsOnlyWhereAskedOrReachedAndOnce)
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
   // Asked after the exhaustive step accepted, refused by it, then reached as the next step: once.
-  const MergeCase near_miss = merge_test::cut(kNearMissesWithAnUnfixedTurn[1]);
-  int runs = 0;
-  ChainMerger asked_then_reached = exhaustiveThenCountedSeed(runs);
-  const MergeResult refused = asked_then_reached.merge(near_miss.a, near_miss.b);
+  const auto [refused, asked_then_reached] = mergeCountingSeedRuns(kNearMissesWithAnUnfixedTurn[1]);
   EXPECT_TRUE(!refused.accepted && refused.refusal == MergeRefusal::kRotation) << refused.reason;
-  EXPECT_EQ(runs, 1);
+  EXPECT_EQ(asked_then_reached, 1);
   // An accepted turn far from the turn check's bar: the seed step is not run.
-  const MergeCase far_from_the_bar = merge_test::cut(kTruthFarFromTheBar);
-  runs = 0;
-  ChainMerger not_asked = exhaustiveThenCountedSeed(runs);
-  const MergeResult accepted = not_asked.merge(far_from_the_bar.a, far_from_the_bar.b);
+  const auto [accepted, not_asked] = mergeCountingSeedRuns(kTruthFarFromTheBar);
   EXPECT_TRUE(accepted.accepted) << accepted.reason;
   EXPECT_GT(accepted.wall_turn_share, 0.8);
   EXPECT_LT(accepted.wall_turn_share, 0.9);
-  EXPECT_EQ(runs, 0);
+  EXPECT_EQ(not_asked, 0);
   // A turn near the bar: asked, it runs once, and the acceptance is kept.
-  const MergeCase near_the_bar = merge_test::cut(kTruthWithAFartherSeedPlacement);
-  runs = 0;
-  ChainMerger asked = exhaustiveThenCountedSeed(runs);
-  const MergeResult kept = asked.merge(near_the_bar.a, near_the_bar.b);
+  const auto [kept, asked] = mergeCountingSeedRuns(kTruthWithAFartherSeedPlacement);
   EXPECT_TRUE(kept.accepted) << kept.reason;
   EXPECT_GE(kept.wall_turn_share, 0.9);
-  EXPECT_EQ(runs, 1);
+  EXPECT_EQ(asked, 1);
 }
 
 }  // namespace
