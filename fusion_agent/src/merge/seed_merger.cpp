@@ -427,8 +427,8 @@ bool SeedMerger::samePlace(const GridTransform& a, const GridTransform& b,
 bool SeedMerger::failsOnItsOwn(const seed::Refined& refined) const {
   const long long overlap = refined.full.agreement + refined.full.disagreement;
   return (overlap < settings_.min_overlap_cells && !smallOverlapDecisive(refined)) ||
-         verificationIndex(refined.full) < settings_.min_verification_v ||
-         refined.structure < settings_.min_structure_agreement || entropyDisagrees(refined);
+         verificationIndex(refined.full) < settings_.min_verification_v || !wallsMeet(refined) ||
+         entropyDisagrees(refined);
 }
 
 seed::Refined SeedMerger::refineBest(const std::vector<seed::Candidate>& candidates,
@@ -489,12 +489,42 @@ bool SeedMerger::wallsOutweighFloor(const seed::Refined& refined) const {
           verification >= settings_.clean_walls_over_floor_min_v);
 }
 
+bool SeedMerger::wallsMeet(const seed::Refined& refined) const {
+  return refined.structure >= settings_.min_structure_agreement || frontierExcuses(refined);
+}
+
+bool SeedMerger::frontierExcuses(const seed::Refined& refined) const {
+  return refined.frontier_structure >= settings_.min_structure_off_frontier &&
+         verificationIndex(refined.full) >= settings_.min_v_off_frontier;
+}
+
 bool SeedMerger::entropyDisagrees(const seed::Refined& refined) const {
   return refined.entropy_gap_cells > settings_.entropy_agreement_cells &&
          !wallsOutweighFloor(refined);
 }
 
 SeedMerger::Refusal SeedMerger::refusal(const seed::Refined& refined) const {
+  Refusal refused = cellsRefusal(refined);
+  if (!refused.empty()) {
+    return refused;
+  }
+  refused = placementRefusal(refined);
+  if (refined.structure >= settings_.min_structure_agreement) {
+    return refused;
+  }
+  // The walls on the other map's frontier left out, the walls may meet: then accepted only when
+  // nothing else refuses; otherwise the strict bar is the reason, as it always was.
+  if (refused.empty() && frontierExcuses(refined)) {
+    return {};
+  }
+  return {MergeRefusal::kStructure, "only " + reasonFigure(refined.structure) +
+                                        " of the overlapping walls meet walls (below " +
+                                        reasonFigure(settings_.min_structure_agreement) + "; " +
+                                        reasonFigure(refined.frontier_structure) +
+                                        " off the other map's frontier)"};
+}
+
+SeedMerger::Refusal SeedMerger::cellsRefusal(const seed::Refined& refined) const {
   const long long overlap = refined.full.agreement + refined.full.disagreement;
   const double verification = verificationIndex(refined.full);
   if (overlap < settings_.min_overlap_cells && !smallOverlapDecisive(refined)) {
@@ -526,11 +556,10 @@ SeedMerger::Refusal SeedMerger::refusal(const seed::Refined& refined) const {
                                              std::to_string(refined.rank + 1) + " is below " +
                                              reasonFigure(settings_.late_rank_min_verification)};
   }
-  if (refined.structure < settings_.min_structure_agreement) {
-    return {MergeRefusal::kStructure, "only " + reasonFigure(refined.structure) +
-                                          " of the overlapping walls meet walls (below " +
-                                          reasonFigure(settings_.min_structure_agreement) + ")"};
-  }
+  return {};
+}
+
+SeedMerger::Refusal SeedMerger::placementRefusal(const seed::Refined& refined) const {
   if (entropyDisagrees(refined)) {
     return {MergeRefusal::kEntropy, "the entropy minimum lies " +
                                         reasonFigure(refined.entropy_gap_cells) +

@@ -110,6 +110,10 @@ void readAcceptanceSettings(const Config& section, SeedMergerSettings& settings)
       "clean_small_overlap_min_v", settings.clean_small_overlap_min_v, {0.0, 2.0});
   settings.min_structure_agreement =
       section.getDouble("min_structure_agreement", settings.min_structure_agreement, {0.0, 1.0});
+  settings.min_structure_off_frontier = section.getDouble(
+      "min_structure_off_frontier", settings.min_structure_off_frontier, {0.0, 2.0});
+  settings.min_v_off_frontier =
+      section.getDouble("min_v_off_frontier", settings.min_v_off_frontier, {0.0, 2.0});
   settings.entropy_agreement_cells =
       section.getDouble("entropy_agreement_cells", settings.entropy_agreement_cells, {0.0, 1000.0});
   settings.max_translation_ambiguity = section.getDouble(

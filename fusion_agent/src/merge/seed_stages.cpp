@@ -503,7 +503,12 @@ Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                                              inputs, tables, settings, coarse);
   const TranslationSearch fine_entropy =
       searchTranslation(inputs.fine_samples, inputs.to, coarse.least_entropy, 1, tables);
-  refined.structure = twoWayStructure(inputs.all_samples, refined.T_to_from, inputs, tables);
+  const StructureAgreement forward =
+      structureAgreement(inputs.all_samples, inputs.to, refined.T_to_from, tables);
+  const StructureAgreement backward =
+      structureAgreement(inputs.occupied_to, inputs.from, refined.T_to_from.inverse(), tables);
+  refined.structure = std::min(forward.index(), backward.index());
+  refined.frontier_structure = std::min(forward.indexOffFrontier(), backward.indexOffFrontier());
   refined.least_entropy = fine_entropy.least_entropy;
   refined.entropy_gap_cells = (refined.T_to_from.t_cells - refined.least_entropy.t_cells).norm();
   return refined;

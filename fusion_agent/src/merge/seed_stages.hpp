@@ -197,6 +197,8 @@ struct Refined {
   GridTransform least_entropy;     ///< least merged entropy over the same shifts
   Agreement full;                  ///< all known cells at T_to_from
   double structure = 0.0;          ///< the lesser structure agreement of the two directions
+  /// The same with the walls on the other map's frontier left out (indexOffFrontier()).
+  double frontier_structure = 0.0;
   double entropy_gap_cells = 0.0;
   double translation_ambiguity = 1.0;  ///< runner-up / best agr - dis within ±δ
   double wall_ambiguity = 1.0;         ///< the wall balance's runner-up share (wall_anchor)

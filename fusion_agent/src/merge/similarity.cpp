@@ -205,6 +205,7 @@ CodeImage codeImage(const GridMap& map, int pad, const ComparisonTables& tables)
     }
   }
   cv::dilate(image.classes == 2, image.near_occupied, cv::Mat::ones(3, 3, CV_8U));
+  cv::dilate(image.classes == 0, image.near_unknown, cv::Mat::ones(3, 3, CV_8U));
   return image;
 }
 
@@ -286,10 +287,15 @@ StructureAgreement structureAgreement(const std::vector<CellSample>& samples, co
   StructureAgreement sums;
   const std::uint8_t* classes = to.classes.ptr<std::uint8_t>(0);
   const std::uint8_t* near = to.near_occupied.ptr<std::uint8_t>(0);
+  const std::uint8_t* frontier = to.near_unknown.ptr<std::uint8_t>(0);
   for (const PlacedSample& sample : place(samples, to, T_to_from, 0, tables)) {
     if (sample.class_row == 6 && classes[sample.index] != 0) {
-      sums.near += near[sample.index] != 0 ? 1 : 0;
-      sums.far += near[sample.index] != 0 ? 0 : 1;
+      if (near[sample.index] != 0) {
+        ++sums.near;
+      } else {
+        ++sums.far;
+        sums.frontier += frontier[sample.index] != 0 ? 1 : 0;
+      }
     }
   }
   return sums;

@@ -90,7 +90,7 @@ TEST(MergeAcceptanceBarsTest, AWallTurnedOntoOpenFloorIsRefusedAtTheBar) {
   const MergeResult result = merger.merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(result.accepted) << "accepted " << caseError(merge_case, result.T_to_from).angle_rad
                                 << " rad from the truth";
-  EXPECT_NE(result.reason.find("of the overlapping walls meet walls (below 0.88)"),
+  EXPECT_NE(result.reason.find("of the overlapping walls meet walls (below 0.88;"),
             std::string::npos)
       << result.reason;
   // At a bar of 0.85 the turned transform passes: this case is decided by the bar.

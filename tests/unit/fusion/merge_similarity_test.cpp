@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "merge_test_maps.hpp"
 #include "mrslam/fusion/merge/similarity.hpp"
 
 namespace mrslam::fusion {
@@ -17,24 +18,6 @@ GridMap mapOf(int width, int height, std::int8_t fill = GridMap::kUnknown) {
   geometry.width = width;
   geometry.height = height;
   return GridMap(geometry, fill);
-}
-
-// Free rooms with walls and an irregular inner wall: no shift looks like another.
-GridMap rooms() {
-  GridMap map = mapOf(80, 60, GridMap::kFree);
-  for (int x = 0; x < 80; ++x) {
-    map.at(x, 0) = map.at(x, 59) = GridMap::kOccupied;
-  }
-  for (int y = 0; y < 60; ++y) {
-    map.at(0, y) = map.at(79, y) = GridMap::kOccupied;
-  }
-  for (int y = 10; y < 45; ++y) {
-    map.at(30, y) = GridMap::kOccupied;
-  }
-  for (int x = 30; x < 62; ++x) {
-    map.at(x, 25 + (x - 30) / 4) = GridMap::kOccupied;
-  }
-  return map;
 }
 
 GridMap shiftedMap(const GridMap& map, int dx, int dy) {
@@ -91,7 +74,7 @@ TEST(MergeSimilarityTest, VerificationIndexAndEntropyOfAHandCase) {
 }
 
 TEST(MergeSimilarityTest, ExhaustiveSearchFindsAKnownShift) {
-  const GridMap from = rooms();
+  const GridMap from = merge_test::handBuiltRooms();
   const GridMap to = shiftedMap(from, 3, -2);
   const ComparisonTables tables{SimilaritySettings{}};
   const TranslationSearch search = searchTranslation(
@@ -135,8 +118,38 @@ TEST(MergeSimilarityTest, StructureAgreementCountsWallsLandingNearWalls) {
   EXPECT_DOUBLE_EQ(sums.index(), 0.5);
 }
 
+TEST(MergeSimilarityTest, StructureAgreementSetsApartWallsOnTheOtherMapsFrontier) {
+  // `to` saw free space up to column 8 and nothing beyond: a wall there it never marked.
+  GridMap from = mapOf(12, 12, GridMap::kFree);
+  GridMap to = mapOf(12, 12, GridMap::kFree);
+  for (int y = 0; y < 12; ++y) {
+    for (int x = 9; x < 12; ++x) {
+      to.at(x, y) = GridMap::kUnknown;
+    }
+  }
+  from.at(2, 5) = from.at(5, 5) = from.at(8, 5) = GridMap::kOccupied;
+  to.at(2, 6) = GridMap::kOccupied;  // beside (2, 5): near
+  // (5, 5) lands on open floor, (8, 5) on the free cell next to the unknown column 9.
+  const ComparisonTables tables{SimilaritySettings{}};
+  const StructureAgreement sums = structureAgreement(
+      knownCells(from, tables), codeImage(to, 1, tables), GridTransform{}, tables);
+  EXPECT_EQ(sums.near, 1);
+  EXPECT_EQ(sums.far, 2);
+  EXPECT_EQ(sums.frontier, 1);
+  EXPECT_DOUBLE_EQ(sums.index(), 1.0 / 3.0);
+  EXPECT_DOUBLE_EQ(sums.indexOffFrontier(), 0.5);
+  // Beyond the map's edge is unknown too: a wall landing on the first column is on the frontier.
+  GridMap edge_wall = mapOf(12, 12, GridMap::kFree);
+  edge_wall.at(0, 3) = GridMap::kOccupied;
+  const StructureAgreement at_edge = structureAgreement(
+      knownCells(edge_wall, tables), codeImage(to, 1, tables), GridTransform{}, tables);
+  EXPECT_EQ(at_edge.far, 1);
+  EXPECT_EQ(at_edge.frontier, 1);
+  EXPECT_DOUBLE_EQ(at_edge.indexOffFrontier(), 0.0);
+}
+
 TEST(MergeSimilarityTest, SampleTakesEvenShareOfEachClass) {
-  const GridMap map = rooms();
+  const GridMap map = merge_test::handBuiltRooms();
   const ComparisonTables tables{SimilaritySettings{}};
   const std::vector<CellSample> known = knownCells(map, tables);
   ASSERT_EQ(known.size(), map.cells.size());

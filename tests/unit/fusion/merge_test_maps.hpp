@@ -209,4 +209,26 @@ inline bool isSuccess(const PoseError& error) {
   return error.rotation_rad <= M_PI / 180.0 && error.translation_cells <= 2.0;
 }
 
+/// Free rooms of 80 × 60 cells with walls and an irregular inner wall: no shift looks like
+/// another.
+inline GridMap handBuiltRooms() {
+  GridGeometry geometry;
+  geometry.width = 80;
+  geometry.height = 60;
+  GridMap map(geometry, GridMap::kFree);
+  for (int x = 0; x < 80; ++x) {
+    map.at(x, 0) = map.at(x, 59) = GridMap::kOccupied;
+  }
+  for (int y = 0; y < 60; ++y) {
+    map.at(0, y) = map.at(79, y) = GridMap::kOccupied;
+  }
+  for (int y = 10; y < 45; ++y) {
+    map.at(30, y) = GridMap::kOccupied;
+  }
+  for (int x = 30; x < 62; ++x) {
+    map.at(x, 25 + (x - 30) / 4) = GridMap::kOccupied;
+  }
+  return map;
+}
+
 }  // namespace mrslam::fusion::merge_test

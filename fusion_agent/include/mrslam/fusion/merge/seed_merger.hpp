@@ -49,7 +49,11 @@
 //    known cells, the entropy minimum over the ±δ shifts lies within `entropy_agreement_cells` of
 //    the best agr - dis (DESIGN's "best V": V alone favours the smallest overlaps), and (ours)
 //    the structure agreement in both directions is ≥ `min_structure_agreement` (V is dominated by
-//    free cells, so a wrong pose in open space scores high) and the best shift ≥ 3 cells from the
+//    free cells, so a wrong pose in open space scores high), or ≥ `min_structure_off_frontier`
+//    with the walls on the other map's frontier left out (free cells next to unknown ones: real
+//    robots leave walls seen at a grazing angle or from far unmarked, and the other robot's walls
+//    land there; on the ACES and CSAIL teams that left 0.46-0.88 of the walls meeting at the
+//    truth), and the best shift ≥ 3 cells from the
 //    best scores at most `max_translation_ambiguity` of it (a corridor seen along its length
 //    fixes no translation), and no other candidate that meets the structure bar but puts `from`
 //    elsewhere scores more than `max_rival_share` of the best (a symmetric junction), nor one
@@ -156,7 +160,11 @@ struct SeedMergerSettings {
   /// at V ≥ clean_small_overlap_min_v (> 1: off).
   double clean_small_overlap_structure = 0.93;
   double clean_small_overlap_min_v = 0.955;
-  double min_structure_agreement = 0.88;    ///< least share of walls landing on walls
+  double min_structure_agreement = 0.88;  ///< least share of walls landing on walls
+  /// ... or at least this share with the walls on the other map's frontier left out (free cells
+  /// next to unknown ones: a wall that robot never marked; > 1: off).
+  double min_structure_off_frontier = 0.88;
+  double min_v_off_frontier = 0.98;         ///< ... where V is at least this
   double entropy_agreement_cells = 1.5;     ///< largest gap best-similarity ↔ least-entropy
   double max_translation_ambiguity = 0.95;  ///< largest runner-up / best agr - dis in ±δ
   double decisive_wall_ambiguity = 0.85;    ///< walls fix the shift: wall runner-up share ≤ this
@@ -323,6 +331,10 @@ class SeedMerger : public MapMerger {
   };
   /// Why a refined transform is refused; empty when it is accepted.
   Refusal refusal(const seed::Refined& refined) const;
+  /// refusal()'s tests of the cells: the overlap and V bars.
+  Refusal cellsRefusal(const seed::Refined& refined) const;
+  /// refusal()'s tests after the walls: the entropy, the translation and the rivals.
+  Refusal placementRefusal(const seed::Refined& refined) const;
   /// Whether an overlap below min_overlap_cells is still decisive (small_overlap_* bars).
   bool smallOverlapDecisive(const seed::Refined& refined) const;
   /// Whether the overlap fixes the translation (the ambiguity bars of block 9).
@@ -331,6 +343,11 @@ class SeedMerger : public MapMerger {
   bool wallsOutweighFloor(const seed::Refined& refined) const;
   /// Whether the least merged entropy lies too far from the best similarity to accept.
   bool entropyDisagrees(const seed::Refined& refined) const;
+  /// Whether the overlapping walls meet walls: min_structure_agreement, or frontierExcuses().
+  bool wallsMeet(const seed::Refined& refined) const;
+  /// Whether they meet with the walls on the other map's frontier left out
+  /// (min_structure_off_frontier) where the known cells agree cleanly (min_v_off_frontier).
+  bool frontierExcuses(const seed::Refined& refined) const;
   seed::SearchInputs searchInputs(const GridMap& from, const GridMap& to) const;
   /// searchInputs() of the last pair of maps asked for, built again only for another pair: a
   /// chain judges many transforms of one pair in turn (judgeHypotheses, placedFits, ...). The

@@ -129,6 +129,8 @@ struct CodeImage {
   cv::Mat codes;          ///< CV_8U, (height + 2 pad) × (width + 2 pad)
   cv::Mat classes;        ///< CV_8U, the class of each code
   cv::Mat near_occupied;  ///< CV_8U, non-zero within one cell of an occupied cell
+  cv::Mat near_unknown;   ///< CV_8U, non-zero within one cell of an unknown cell (a frontier;
+                          ///< the pad is unknown, so the map's edge is one too)
   int pad = 0;
 };
 CodeImage codeImage(const GridMap& map, int pad, const ComparisonTables& tables);
@@ -153,11 +155,21 @@ Agreement compareAt(const std::vector<CellSample>& samples, const CodeImage& to,
 /// on known cells of `to`, those with an occupied cell of `to` within one cell (`near`) and the
 /// others (`far`). Free cells dominate agr and dis, so V stays high when a wrong transform
 /// lays walls into open space of a large free area; this index looks at the walls alone.
+///
+/// A robot's free space often ends at a wall it never marked: a wall seen at a grazing angle or
+/// at long range leaves free cells up to it and unknown ones behind. The other robot's walls
+/// land there on free cells next to unknown ones (`frontier`, counted among `far`), which say
+/// nothing against the transform; indexOffFrontier() leaves them out.
 struct StructureAgreement {
   long long near = 0;
   long long far = 0;
-  double index() const {
-    return near + far > 0 ? static_cast<double>(near) / static_cast<double>(near + far) : 0.0;
+  long long frontier = 0;  ///< of `far`: on a known cell with an unknown cell within one cell
+  double index() const { return share(near, near + far); }
+  double indexOffFrontier() const { return share(near, near + far - frontier); }
+
+ private:
+  static double share(long long part, long long whole) {
+    return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
   }
 };
 StructureAgreement structureAgreement(const std::vector<CellSample>& samples, const CodeImage& to,
