@@ -27,10 +27,10 @@ int runTeam(const std::string& team_file, const std::filesystem::path& out, std:
   return code;
 }
 
-// Runs a team file of three robots on a corrected CARMEN log: every robot must be placed from
-// the maps alone within 0.1 m and 1° of the splitter's truth, and each agent leaves its log.
-void expectEveryRobotPlaced(const std::string& team_file, const std::string& fusion_name,
-                            const std::filesystem::path& out) {
+// Runs a team file of three robots on a corrected CARMEN log (the intel team's agent configs):
+// every robot must be placed from the maps alone within 0.1 m and 1° of the splitter's truth,
+// and each agent leaves its log.
+void expectEveryRobotPlaced(const std::string& team_file, const std::filesystem::path& out) {
   std::string log;
   ASSERT_EQ(runTeam(sourcePath(team_file), out / "team", log), 0) << log;
   const nlohmann::json truth = readJson((out / "team" / "segments" / "truth.json").string());
@@ -51,14 +51,15 @@ void expectEveryRobotPlaced(const std::string& team_file, const std::string& fus
               M_PI / 180.0)
         << robot["id"];
   }
-  for (const std::string agent : {"robot1", "robot2", "robot3", fusion_name.c_str()}) {
-    EXPECT_TRUE(std::filesystem::exists(out / "team" / "logs" / (agent + ".log"))) << agent;
+  for (const char* agent : {"robot1", "robot2", "robot3", "intel_team_fusion"}) {
+    EXPECT_TRUE(std::filesystem::exists(out / "team" / "logs" / (std::string(agent) + ".log")))
+        << agent;
   }
 }
 
 TEST(TeamLauncherTest, TheIntelTeamFileRunsSplitsAndPlacesEveryRobot) {
   MRSLAM_REQUIRE_SHARED_DATA("logs/carmen-intel-corrected.log.gz");
-  expectEveryRobotPlaced("config/intel_team.yaml", "intel_team_fusion", scratchFolder("intel"));
+  expectEveryRobotPlaced("config/intel_team.yaml", scratchFolder("intel"));
 }
 
 // Two more buildings with the same configs. Their robots' maps show walls one robot never
@@ -66,12 +67,12 @@ TEST(TeamLauncherTest, TheIntelTeamFileRunsSplitsAndPlacesEveryRobot) {
 // leaves out walls on the other map's frontier (min_structure_off_frontier).
 TEST(TeamLauncherTest, TheAcesTeamFilePlacesEveryRobot) {
   MRSLAM_REQUIRE_SHARED_DATA("logs/carmen-aces-corrected.log.gz");
-  expectEveryRobotPlaced("config/aces_team.yaml", "intel_team_fusion", scratchFolder("aces"));
+  expectEveryRobotPlaced("config/aces_team.yaml", scratchFolder("aces"));
 }
 
 TEST(TeamLauncherTest, TheCsailTeamFilePlacesEveryRobot) {
   MRSLAM_REQUIRE_SHARED_DATA("logs/carmen-csail-corrected.log.gz");
-  expectEveryRobotPlaced("config/csail_team.yaml", "intel_team_fusion", scratchFolder("csail"));
+  expectEveryRobotPlaced("config/csail_team.yaml", scratchFolder("csail"));
 }
 
 TEST(TeamLauncherTest, AFailedRobotSetsItsBitAndTheFusionAgentStopsAfterTheGrace) {

@@ -52,7 +52,7 @@
 //    free cells, so a wrong pose in open space scores high), or ≥ `min_structure_off_frontier`
 //    with the walls on the other map's frontier left out (free cells next to unknown ones: real
 //    robots leave walls seen at a grazing angle or from far unmarked, and the other robot's walls
-//    land there; on the ACES and CSAIL teams that left 0.46-0.88 of the walls meeting at the
+//    land there; on the ACES and CSAIL teams that left 0.46-0.87 of the walls meeting at the
 //    truth), and the best shift ≥ 3 cells from the
 //    best scores at most `max_translation_ambiguity` of it (a corridor seen along its length
 //    fixes no translation), and no other candidate that meets the structure bar but puts `from`
