@@ -247,14 +247,22 @@ TranslationSearch searchAround(const GridTransform& T_to_from, const SearchInput
 
 namespace {
 
-// The lesser structure agreement of the two directions: the walls among `from_samples` (the
-// coarse sample for a candidate, every known cell in block 9) on `to`'s and all of `to`'s walls
-// on `from`'s (a wrong transform often passes one direction only).
-double twoWayStructure(const std::vector<CellSample>& from_samples, const GridTransform& T_to_from,
-                       const SearchInputs& inputs, const ComparisonTables& tables) {
-  return std::min(
-      structureAgreement(from_samples, inputs.to, T_to_from, tables).index(),
-      structureAgreement(inputs.occupied_to, inputs.from, T_to_from.inverse(), tables).index());
+// The lesser structure agreement of the two directions (`strict`): the walls among
+// `from_samples` (the coarse sample for a candidate, every known cell in block 9) on `to`'s and
+// all of `to`'s walls on `from`'s (a wrong transform often passes one direction only); and the
+// lesser of the two with the walls on the other map's frontier left out (`off_frontier`).
+struct TwoWayStructure {
+  double strict = 0.0;
+  double off_frontier = 0.0;
+};
+TwoWayStructure twoWayStructure(const std::vector<CellSample>& from_samples,
+                                const GridTransform& T_to_from, const SearchInputs& inputs,
+                                const ComparisonTables& tables) {
+  const StructureAgreement forward = structureAgreement(from_samples, inputs.to, T_to_from, tables);
+  const StructureAgreement backward =
+      structureAgreement(inputs.occupied_to, inputs.from, T_to_from.inverse(), tables);
+  return {std::min(forward.index(), backward.index()),
+          std::min(forward.indexOffFrontier(), backward.indexOffFrontier())};
 }
 
 // Whether a candidate can pass block 9's structure bar and (with `rank_by_overlap`) its overlap
@@ -358,7 +366,7 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
       candidate.similarity = search.at_best_similarity.similarity();
     }
     candidate.structure =
-        twoWayStructure(inputs.coarse_samples, candidate.T_to_from, inputs, tables);
+        twoWayStructure(inputs.coarse_samples, candidate.T_to_from, inputs, tables).strict;
     measureOverlap(inputs, tables, candidate);
     candidates.push_back(candidate);
   }
@@ -503,12 +511,10 @@ Refined finalize(const GridTransform& T_to_from, const SearchInputs& inputs,
                                              inputs, tables, settings, coarse);
   const TranslationSearch fine_entropy =
       searchTranslation(inputs.fine_samples, inputs.to, coarse.least_entropy, 1, tables);
-  const StructureAgreement forward =
-      structureAgreement(inputs.all_samples, inputs.to, refined.T_to_from, tables);
-  const StructureAgreement backward =
-      structureAgreement(inputs.occupied_to, inputs.from, refined.T_to_from.inverse(), tables);
-  refined.structure = std::min(forward.index(), backward.index());
-  refined.frontier_structure = std::min(forward.indexOffFrontier(), backward.indexOffFrontier());
+  const TwoWayStructure structure =
+      twoWayStructure(inputs.all_samples, refined.T_to_from, inputs, tables);
+  refined.structure = structure.strict;
+  refined.frontier_structure = structure.off_frontier;
   refined.least_entropy = fine_entropy.least_entropy;
   refined.entropy_gap_cells = (refined.T_to_from.t_cells - refined.least_entropy.t_cells).norm();
   return refined;

@@ -145,23 +145,17 @@ TEST(MergeChainSecondOpinionTest, ATurnTheSeedStepFindsUnfixedNearByIsRefused) {
 
 TEST(MergeChainSecondOpinionTest, ATurnFarFromTheBarIsNotQuestioned) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
-  const MergeCase merge_case = merge_test::cut(kTruthFarFromTheBar);
-  const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
   // Asked at any share, the seed step's placement 1.87° away refuses the truth.
-  const MergeResult refused = merge_test::chainFrom("chain: {second_opinion_turn_share: 0}\n")
-                                  ->merge(merge_case.a, merge_case.b);
+  const MergeResult refused = merge_test::mergedRightByDefaultThenWith(
+      kTruthFarFromTheBar, "chain: {second_opinion_turn_share: 0}\n");
   EXPECT_TRUE(refusedByTheSecondOpinion(refused)) << refused.reason;
 }
 
 TEST(MergeChainSecondOpinionTest, ASeedPlacementBeyondTheWindowsSaysNothing) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
-  const MergeCase merge_case = merge_test::cut(kTruthWithAFartherSeedPlacement);
-  const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
   // With windows that meet up to 4° apart, the seed step's placement 3.59° away refuses it.
-  const MergeResult refused =
-      merge_test::chainFrom("chain: {second_opinion_deg: 4}\n")->merge(merge_case.a, merge_case.b);
+  const MergeResult refused = merge_test::mergedRightByDefaultThenWith(
+      kTruthWithAFartherSeedPlacement, "chain: {second_opinion_deg: 4}\n");
   EXPECT_TRUE(refusedByTheSecondOpinion(refused)) << refused.reason;
 }
 

@@ -155,12 +155,9 @@ TEST(MergeChainTurnedRivalsTest, WeaklyWalledPlacementsFaceDirtierTurns) {
 
 TEST(MergeChainTurnedRivalsTest, WellWalledPlacementsKeepTheStricterRateBar) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
-  const MergeCase merge_case = merge_test::cut(kWellWalledTruthWithATurn);
-  const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
   // Counted as weakly walled, the same truth is refused for its dirtier turn.
-  const MergeResult refused = merge_test::chainFrom("chain: {turned_rival_weak_structure: 1}\n")
-                                  ->merge(merge_case.a, merge_case.b);
+  const MergeResult refused = merge_test::mergedRightByDefaultThenWith(
+      kWellWalledTruthWithATurn, "chain: {turned_rival_weak_structure: 1}\n");
   EXPECT_TRUE(refusedForTheTurn(refused)) << refused.reason;
 }
 

@@ -79,6 +79,14 @@ inline MergeResult expectMergedWithinTwoCellsAndOneDegree(const CropPair& pair, 
   return expectMergedWithinTwoCellsAndOneDegree(cut(pair), merger);
 }
 
+/// Expects the default chain to merge a pair's crops within the tolerance, and returns what the
+/// chain with `yaml` (chainFrom()) makes of the same crops: a setting that decides the case.
+inline MergeResult mergedRightByDefaultThenWith(const CropPair& pair, const std::string& yaml) {
+  const MergeCase merge_case = cut(pair);
+  expectMergedWithinTwoCellsAndOneDegree(merge_case, *makeMerger(defaultMergerName()));
+  return chainFrom(yaml)->merge(merge_case.a, merge_case.b);
+}
+
 /// Merges a case's crops with `merger`, expecting no accepted transform but a correct one.
 inline void expectNoWrongAccept(const MergeCase& merge_case, MapMerger& merger) {
   const MergeResult result = merger.merge(merge_case.a, merge_case.b);
