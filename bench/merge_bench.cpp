@@ -3,7 +3,8 @@
 // reports the median of one merge over the cases and each block's share of the time
 // (SeedMerger::lastTimings), BM_FeatureMerge400 the same for the feature baseline; BM_Merge400
 // the median, the 90th percentile and the share merged within 2 cells and 1° of the truth for
-// other mergers of the registry (the exhaustive search, the chain) on the same cases.
+// other mergers of the registry (the exhaustive search, the chain) on the same cases;
+// BM_ExhaustiveSearch400 the exhaustive search alone, with and without its early stop.
 // BM_MergeWholeBuilding: two turned 700-cell windows of the ACES map (crops of about 1000 cells a
 // side, which the exhaustive search takes on larger cells, max_grid_cells).
 #include <benchmark/benchmark.h>
@@ -12,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <numeric>
 #include <opencv2/core.hpp>
 #include <random>
 #include <string>
@@ -19,6 +21,7 @@
 
 #include "../tests/unit/fusion/merge_test_maps.hpp"
 #include "mrslam/common/heap.hpp"
+#include "mrslam/fusion/merge/exhaustive_search.hpp"
 #include "mrslam/fusion/merge/feature_merger.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
 #include "mrslam/fusion/merge/merger_registry.hpp"
@@ -113,6 +116,56 @@ BENCHMARK_CAPTURE(BM_Merge400, exhaustive_intel, "exhaustive", "carpin-intel.txt
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
 BENCHMARK_CAPTURE(BM_Merge400, chain_intel, "chain", "carpin-intel.txt")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(kCases);
+
+/// The exhaustive search alone (exhaustive_search.hpp, default settings) on the same cases, each
+/// searched twice in turn: summing every point of every node, and stopping a node's sums once it
+/// cannot beat the bar (the default; the same hypotheses). Reports both medians and the ratio of
+/// the total times, measured side by side.
+void BM_ExhaustiveSearch400(benchmark::State& state, const char* file) {
+  cv::setNumThreads(1);  // one core
+  const std::vector<merge_test::KnownCase> known = cases(file);
+  if (known.empty()) {
+    state.SkipWithError("needs ../shared/data/maps");
+    return;
+  }
+  ExhaustiveSearchSettings every_point;
+  every_point.stop_early = false;
+  const ExhaustiveSearchSettings stop_early;
+  std::vector<double> early_ms;
+  std::vector<double> every_ms;
+  int same = 0;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const merge_test::KnownCase& pair = known[next++ % known.size()];
+    const auto search = [&](const ExhaustiveSearchSettings& settings, std::vector<double>& times) {
+      const auto start = std::chrono::steady_clock::now();
+      std::vector<ExhaustiveHypothesis> found = exhaustiveSearch(pair.from, pair.to, settings, {});
+      times.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count());
+      return found;
+    };
+    const std::vector<ExhaustiveHypothesis> early = search(stop_early, early_ms);
+    const std::vector<ExhaustiveHypothesis> every = search(every_point, every_ms);
+    same += early.size() == every.size() &&
+                    std::equal(early.begin(), early.end(), every.begin(),
+                               [](const ExhaustiveHypothesis& a, const ExhaustiveHypothesis& b) {
+                                 return a.score == b.score;
+                               })
+                ? 1
+                : 0;
+  }
+  const auto total = [](const std::vector<double>& times) {
+    return std::accumulate(times.begin(), times.end(), 0.0);
+  };
+  state.counters["median_ms"] = percentileOf(early_ms, 0.5);
+  state.counters["every_point_median_ms"] = percentileOf(every_ms, 0.5);
+  state.counters["time_ratio"] = total(early_ms) / total(every_ms);
+  state.counters["same_share"] = static_cast<double>(same) / static_cast<double>(early_ms.size());
+}
+BENCHMARK_CAPTURE(BM_ExhaustiveSearch400, intel, "carpin-intel.txt")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
 

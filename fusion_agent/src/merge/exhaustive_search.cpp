@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 namespace mrslam::fusion {
@@ -317,32 +318,66 @@ void KeptLeaves::offer(const ExhaustiveHypothesis& leaf, const Eigen::Vector2d& 
   }
 }
 
+/// The most one point can score: a wall on a wall (exp(0)), a free cell on a free cell.
+struct PointCaps {
+  float wall = 1.0f;
+  float free = 0.0f;
+};
+
+/// Points summed between two looks at whether the bounds can still beat the threshold.
+constexpr std::size_t kBoundChunk = 32;
+/// Float sums may round a little above the partial sums' caps: prune only clearly below.
+constexpr float kPruneMargin = 1e-3f;
+
 /// A node's bound is the sum of the pyramid's values at its corner plus each point's offset;
-/// this sums four corners at once: base, base + right, base + up, base + right + up.
-void sumAtFour(const float* base, std::ptrdiff_t right, std::ptrdiff_t up,
-               const std::vector<std::ptrdiff_t>& offsets, float* sums) {
-  float sum0 = 0.0f;
-  float sum1 = 0.0f;
-  float sum2 = 0.0f;
-  float sum3 = 0.0f;
-  for (const std::ptrdiff_t offset : offsets) {
-    const float* at = base + offset;
-    sum0 += at[0];
-    sum1 += at[right];
-    sum2 += at[up];
-    sum3 += at[up + right];
+/// this sums four corners at once: base, base + right, base + up, base + right + up, starting
+/// from `sums`. It stops early, returning false, once each of the four sums plus `cap` per point
+/// left and `after` is at most `threshold` (`sums` then hold those caps: still upper bounds).
+bool sumAtFour(const float* base, std::ptrdiff_t right, std::ptrdiff_t up,
+               const std::vector<std::ptrdiff_t>& offsets, float cap, float after, float threshold,
+               float* sums) {
+  float sum0 = sums[0];
+  float sum1 = sums[1];
+  float sum2 = sums[2];
+  float sum3 = sums[3];
+  const std::size_t count = offsets.size();
+  for (std::size_t begin = 0; begin < count; begin += kBoundChunk) {
+    const std::size_t end = std::min(count, begin + kBoundChunk);
+    for (std::size_t i = begin; i < end; ++i) {
+      const float* at = base + offsets[i];
+      sum0 += at[0];
+      sum1 += at[right];
+      sum2 += at[up];
+      sum3 += at[up + right];
+    }
+    const float rest = cap * static_cast<float>(count - end) + after;
+    if (std::max({sum0, sum1, sum2, sum3}) + rest < threshold - kPruneMargin) {
+      sums[0] = sum0 + rest;
+      sums[1] = sum1 + rest;
+      sums[2] = sum2 + rest;
+      sums[3] = sum3 + rest;
+      return false;
+    }
   }
   sums[0] = sum0;
   sums[1] = sum1;
   sums[2] = sum2;
   sums[3] = sum3;
+  return true;
 }
 
 class BranchAndBound {
  public:
   BranchAndBound(const ValuePyramid& pyramid, const std::vector<Rotation>& rotations,
-                 const PointSet& set, int cell_size, KeptLeaves& kept)
-      : pyramid_(pyramid), rotations_(rotations), set_(set), cell_size_(cell_size), kept_(kept) {}
+                 const PointSet& set, int cell_size, const PointCaps& caps, bool stop_early,
+                 KeptLeaves& kept)
+      : pyramid_(pyramid),
+        rotations_(rotations),
+        set_(set),
+        cell_size_(cell_size),
+        caps_(caps),
+        stop_early_(stop_early),
+        kept_(kept) {}
 
   /// The nodes of `level` (each `top` translations a side) of one rotation whose corners lie in
   /// [x_begin, x_end) × [y_begin, y_end), row by row; their bounds four at a time.
@@ -355,7 +390,7 @@ class BranchAndBound {
       for (int column = 0; column < columns; column += 2) {
         double four[4];
         const Node corner{rotation, x_begin + column * top, y_begin + row * top, level + 1, 0.0};
-        childBounds(corner, top, four);
+        childBounds(corner, top, kept_.threshold(), four);
         for (int i = 0; i < 4; ++i) {
           bounds[static_cast<std::size_t>((row + (i >> 1)) * (columns + 1) + column + (i & 1))] =
               four[i];
@@ -371,21 +406,27 @@ class BranchAndBound {
   }
 
   /// The bounds of the four children of `node` (corners tx, tx + half; ty, ty + half), in one
-  /// pass over the points.
-  void childBounds(const Node& node, int half, double* bounds) const {
+  /// pass over the points. False when each is sure to be at most `threshold`: the pass stopped
+  /// early and `bounds` hold upper bounds at most `threshold` (the children would be pruned).
+  bool childBounds(const Node& node, int half, double threshold, double* bounds) const {
     const std::ptrdiff_t corner =
         static_cast<std::ptrdiff_t>(node.ty + pyramid_.pad) * pyramid_.stride +
         (node.tx + pyramid_.pad);
     const std::ptrdiff_t up = static_cast<std::ptrdiff_t>(half) * pyramid_.stride;
     const Rotation& turned = rotations_[static_cast<std::size_t>(node.rotation)];
     const auto h = static_cast<std::size_t>(node.level - 1);
-    float walls[4];
-    float free[4];
-    sumAtFour(pyramid_.walls[h].data() + corner, half, up, turned.walls, walls);
-    sumAtFour(pyramid_.free[h].data() + corner, half, up, turned.free, free);
+    const auto limit =
+        stop_early_ ? static_cast<float>(threshold) : -std::numeric_limits<float>::infinity();
+    const float free_cap = caps_.free * static_cast<float>(turned.free.size());
+    float sums[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const bool open = sumAtFour(pyramid_.walls[h].data() + corner, half, up, turned.walls,
+                                caps_.wall, free_cap, limit, sums) &&
+                      sumAtFour(pyramid_.free[h].data() + corner, half, up, turned.free, caps_.free,
+                                0.0f, limit, sums);
     for (int i = 0; i < 4; ++i) {
-      bounds[i] = static_cast<double>(walls[i] + free[i]);
+      bounds[i] = static_cast<double>(sums[i]);
     }
+    return open;
   }
 
   void expand(const Node& node) {
@@ -398,7 +439,9 @@ class BranchAndBound {
     }
     const int half = 1 << (node.level - 1);
     double bounds[4];
-    childBounds(node, half, bounds);
+    if (!childBounds(node, half, kept_.threshold(), bounds)) {
+      return;  // every child at or below the threshold
+    }
     Node children[4];
     for (int i = 0; i < 4; ++i) {
       children[i] = {node.rotation, node.tx + (i & 1) * half, node.ty + (i >> 1) * half,
@@ -433,6 +476,8 @@ class BranchAndBound {
   const std::vector<Rotation>& rotations_;
   const PointSet& set_;
   int cell_size_;
+  PointCaps caps_;
+  bool stop_early_;
   KeptLeaves& kept_;
 };
 
@@ -550,7 +595,8 @@ std::vector<ExhaustiveHypothesis> searchOneWay(const SearchGrid& grid_from,
   const ValuePyramid pyramid = valuePyramid(grid_to, 2 * reach + top + 1, settings);
   const std::vector<Rotation> turns = rotations(set, pyramid.stride, settings.rotation_step_cells);
   KeptLeaves kept(settings, settings.min_score_share * static_cast<double>(set.walls.size()));
-  BranchAndBound search(pyramid, turns, set, cell_size, kept);
+  const PointCaps caps{1.0f, static_cast<float>(std::max(0.0, settings.free_weight))};
+  BranchAndBound search(pyramid, turns, set, cell_size, caps, settings.stop_early, kept);
   std::vector<Node> nodes;
   for (int k = 0; k < static_cast<int>(turns.size()); ++k) {
     search.addTopNodes(k, -reach, grid_to.width + reach, -reach, grid_to.height + reach, top,

@@ -75,6 +75,57 @@ TEST(ExhaustiveSearchTest, FindsTheTruthOfATurnedAndShiftedCrop) {
       << "the search's score is the score of its transform";
 }
 
+/// The hypotheses of the search with `settings` against those of scoring every translation of
+/// every rotation (depth 0: each top node is a leaf; every point summed).
+void expectTheSameAsEveryLeafScored(const MergeCase& merge_case,
+                                    const ExhaustiveSearchSettings& settings) {
+  ExhaustiveSearchSettings every_leaf = settings;
+  every_leaf.depth = 0;
+  every_leaf.stop_early = false;
+  const std::vector<ExhaustiveHypothesis> found =
+      exhaustiveSearch(merge_case.a, merge_case.b, settings, {});
+  const std::vector<ExhaustiveHypothesis> reference =
+      exhaustiveSearch(merge_case.a, merge_case.b, every_leaf, {});
+  ASSERT_FALSE(reference.empty());
+  ASSERT_EQ(found.size(), reference.size());
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    EXPECT_NEAR(found[i].T_to_from.theta_rad, reference[i].T_to_from.theta_rad, 1e-12) << i;
+    EXPECT_NEAR((found[i].T_to_from.t_cells - reference[i].T_to_from.t_cells).norm(), 0.0, 1e-9)
+        << i;
+    EXPECT_NEAR(found[i].score, reference[i].score, 1e-9) << i;
+  }
+  EXPECT_TRUE(within(merge_case, found.front().T_to_from, 2.0, 1.0))
+      << "the best is the truth: " << caseError(merge_case, found.front().T_to_from).distance_cells;
+}
+
+// The branch and bound cuts a node only when its bound cannot beat the hypotheses kept, and stops
+// summing a node's points once the points left cannot lift it above them: it must keep what
+// scoring every translation of every rotation keeps, whether it keeps many (a low bar) or one (the
+// bar is the best leaf found so far).
+TEST(ExhaustiveSearchTest, BranchAndBoundKeepsWhatScoringEveryTranslationKeeps) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
+  const CropPair pair = {"freiburg-intel.pgm",
+                         0,
+                         {{400, 500}, 170, 0.4, {6, 2}, {3, 9}},
+                         {{450, 540}, 170, -1.1, {2, 7}, {8, 1}}};
+  const MergeCase merge_case = cut(pair);
+  ExhaustiveSearchSettings many;
+  many.cell_size = 3;  // a small search, so that every leaf can be scored
+  many.min_best_share = 0.1;
+  {
+    SCOPED_TRACE("many hypotheses");
+    expectTheSameAsEveryLeafScored(merge_case, many);
+  }
+  ExhaustiveSearchSettings one = many;
+  one.search_hypotheses = 1;
+  one.hypotheses = 1;
+  one.both_ways = false;
+  {
+    SCOPED_TRACE("the best alone");
+    expectTheSameAsEveryLeafScored(merge_case, one);
+  }
+}
+
 TEST(ExhaustiveSearchTest, TheTruthOfLowOverlapCropsIsAmongTheHypotheses) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");

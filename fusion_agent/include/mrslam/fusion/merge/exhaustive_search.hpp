@@ -26,7 +26,9 @@
 //    the score of any translation it covers. Nodes of every rotation at h = `depth` are
 //    expanded best bound first, depth first; a node is cut when its bound cannot beat the
 //    `search_hypotheses`-th best distinct leaf found so far, `min_score_share` of the wall points
-//    or `min_best_share` of the best leaf.
+//    or `min_best_share` of the best leaf. A node's points are summed in chunks, and the sum
+//    stops once the points left (each at most its best value: a wall on a wall, a free cell on
+//    a free cell) cannot lift any of its children above that bar: they would be cut anyway.
 // 5. The best leaves, no two alike (within `distinct_cells` cells at `from`'s centroid and
 //    `distinct_deg` degrees): the better of two alike ones is kept.
 // 6. Each leaf refined at full resolution (one grid cell a map cell; σ, reach and margin scaled
@@ -60,6 +62,8 @@ struct ExhaustiveSearchSettings {
   double conflict_penalty = 6.0;     ///< cost of a free cell of `from` on `to`'s walls
   int free_margin = 1;               ///< free cells of `from` this near its walls are not scored
   int depth = 5;                     ///< the coarsest node covers 2^depth translations a side
+  bool stop_early = true;            ///< stop a node's sums once it cannot beat the bar (false:
+                                     ///< every point summed, the same result; tests and bench)
   int search_hypotheses = 16;        ///< best distinct leaves kept by each way's search
   bool both_ways = true;             ///< search `to` onto `from` too
   int hypotheses = 16;               ///< best distinct transforms returned (by the score both ways)
