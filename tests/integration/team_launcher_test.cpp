@@ -29,7 +29,7 @@ int runTeam(const std::string& team_file, const std::filesystem::path& out, std:
 
 // Runs a team file of three robots on a corrected CARMEN log (the intel team's agent configs):
 // every robot must be placed from the maps alone within 0.1 m and 1° of the splitter's truth,
-// and each agent leaves its log.
+// the launcher's evaluation says so too, and each agent leaves its log.
 void expectEveryRobotPlaced(const std::string& team_file, const std::filesystem::path& out) {
   std::string log;
   ASSERT_EQ(runTeam(sourcePath(team_file), out / "team", log), 0) << log;
@@ -51,6 +51,29 @@ void expectEveryRobotPlaced(const std::string& team_file, const std::filesystem:
               M_PI / 180.0)
         << robot["id"];
   }
+  // The launcher's evaluation: the same errors, and on the corrected poses the truth in the
+  // robots' estimated frames is the split's.
+  const nlohmann::json evaluation = readJson((out / "team" / "evaluation.json").string());
+  const nlohmann::json estimated =
+      readJson((out / "team" / "segments" / "truth_estimated.json").string());
+  ASSERT_EQ(evaluation["robots"].size(), 2u);  // all but the reference
+  for (std::size_t k = 1; k < 3; ++k) {
+    const nlohmann::json& error = evaluation["robots"][k - 1];
+    EXPECT_EQ(error["id"], truth["robots"][k]["id"]);
+    EXPECT_NEAR(
+        error["split_truth"]["distance_m"].get<double>(),
+        std::hypot(placed["robots"][k]["x"].get<double>() - truth["robots"][k]["x"].get<double>(),
+                   placed["robots"][k]["y"].get<double>() - truth["robots"][k]["y"].get<double>()),
+        1e-9);
+    EXPECT_LT(error["estimated_frames_truth"]["distance_m"].get<double>(), 0.1);
+    EXPECT_LT(error["estimated_frames_truth"]["angle_deg"].get<double>(), 1.0);
+    for (const char* field : {"x", "y", "theta"}) {
+      EXPECT_NEAR(estimated["robots"][k][field].get<double>(),
+                  truth["robots"][k][field].get<double>(), 1e-3)
+          << field;
+    }
+  }
+  EXPECT_NE(log.find("robot2 placed"), std::string::npos) << log;
   for (const char* agent : {"robot1", "robot2", "robot3", "intel_team_fusion"}) {
     EXPECT_TRUE(std::filesystem::exists(out / "team" / "logs" / (std::string(agent) + ".log")))
         << agent;

@@ -1,6 +1,7 @@
 // mrslam_team: starts a team file's robot and fusion agents as separate processes over DDS,
 // one log per agent; Ctrl-C stops them all. The exit code's bits say what failed (1 a robot
-// agent, 2 a fusion agent, 4 a launch, 8 the time-out).
+// agent, 2 a fusion agent, 4 a launch, 8 the time-out). A team on a split log is evaluated at the
+// end (DIR/segments/truth_estimated.json, DIR/evaluation.json); --evaluate-only does just that.
 
 #include <spdlog/spdlog.h>
 
@@ -27,6 +28,9 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", options.timeout_s,
                  "stop everything after this many seconds (0: never)")
       ->check(CLI::NonNegativeNumber);
+  bool evaluate_only = false;
+  app.add_flag("--evaluate-only", evaluate_only,
+               "start nothing: evaluate the finished run in --out (a team on a split log)");
   app.set_version_flag("--version", mrslam::versionLine("team"));
   CLI11_PARSE(app, argc, argv);
   if (domain >= 0) {
@@ -35,6 +39,9 @@ int main(int argc, char** argv) {
   const std::atomic<bool>& shutdown = mrslam::shutdownRequested();
   try {
     const mrslam::tools::TeamSpec team = mrslam::tools::loadTeamSpec(team_path);
+    if (evaluate_only) {
+      return mrslam::tools::evaluateTeam(team, options) ? 0 : mrslam::tools::kTeamLaunchFailed;
+    }
     const int result = mrslam::tools::runTeam(team, options, shutdown);
     if (result == mrslam::tools::kTeamOk) {
       spdlog::info("team: done; outputs in {}", options.out);

@@ -10,6 +10,7 @@
 
 #include "mrslam/tools/carmen_split.hpp"
 #include "mrslam/tools/child_process.hpp"
+#include "mrslam/tools/team_evaluation.hpp"
 
 namespace mrslam::tools {
 
@@ -108,10 +109,14 @@ std::vector<std::string> robotArguments(const TeamRobot& robot, const TeamSpec& 
   return argv;
 }
 
+fs::path fusionFolder(const TeamFusion& fusion, const TeamSpec& team,
+                      const TeamRunOptions& options) {
+  return team.fusion.size() == 1 ? fs::path(options.out) : fs::path(options.out) / fusion.name;
+}
+
 std::vector<std::string> fusionArguments(const TeamFusion& fusion, const TeamSpec& team,
                                          const TeamRunOptions& options) {
-  const fs::path out =
-      team.fusion.size() == 1 ? fs::path(options.out) : fs::path(options.out) / fusion.name;
+  const fs::path out = fusionFolder(fusion, team, options);
   std::vector<std::string> argv = {
       (fs::path(options.bin_dir) / "fusion_agent" / "fusion_agent").string(), "--config",
       fusion.config, "--out", out.string()};
@@ -294,6 +299,14 @@ int watch(std::vector<Agent>& agents, const TeamSpec& team, const TeamRunOptions
 
 }  // namespace
 
+bool evaluateTeam(const TeamSpec& team, const TeamRunOptions& options) {
+  std::vector<std::string> folders;
+  for (const TeamFusion& fusion : team.fusion) {
+    folders.push_back(fusionFolder(fusion, team, options).string());
+  }
+  return evaluateTeamRun(options.out, folders);
+}
+
 int runTeam(const TeamSpec& team, const TeamRunOptions& options,
             const std::atomic<bool>& shutdown) {
   fs::create_directories(fs::path(options.out) / "logs");
@@ -308,7 +321,11 @@ int runTeam(const TeamSpec& team, const TeamRunOptions& options,
   }
   spdlog::info("team: {} robot agent(s) and {} fusion agent(s) started; logs in {}",
                team.robots.size(), team.fusion.size(), (fs::path(options.out) / "logs").string());
-  return watch(agents, team, options, shutdown);
+  const int exit_bits = watch(agents, team, options, shutdown);
+  if (team.split) {
+    evaluateTeam(team, options);
+  }
+  return exit_bits;
 }
 
 }  // namespace mrslam::tools

@@ -27,7 +27,13 @@ enum TeamExit : int {
   kTeamTimedOut = 8,      ///< the run hit timeout_s
 };
 
-/// Runs the team until it ends or `shutdown` is set; returns the TeamExit bits.
+/// Runs the team until it ends or `shutdown` is set; returns the TeamExit bits. A team on a split
+/// log is evaluated at the end (evaluateTeam).
 int runTeam(const TeamSpec& team, const TeamRunOptions& options, const std::atomic<bool>& shutdown);
+
+/// The placements of a finished run of `team` in `options.out` against the split's truth and the
+/// truth in the robots' estimated frames (team_evaluation.hpp): writes them and logs one line per
+/// robot. False when there is nothing to evaluate.
+bool evaluateTeam(const TeamSpec& team, const TeamRunOptions& options);
 
 }  // namespace mrslam::tools
