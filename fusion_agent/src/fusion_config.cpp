@@ -59,6 +59,7 @@ void loadMerge(const Config& section, FusionConfig& fusion) {
   merge.min_interval_s = section.getDouble("min_interval_s", merge.min_interval_s, {0.0, 3600.0});
   merge.material_change = section.getDouble("material_change", merge.material_change, {0.0, 10.0});
   merge.refine_accepted = section.getBool("refine_accepted", merge.refine_accepted);
+  merge.threads = static_cast<int>(section.getInt("threads", merge.threads, {1, 64}));
   fusion.final_merge_timeout_s =
       section.getDouble("final_timeout_s", fusion.final_merge_timeout_s, {0.0, 3600.0});
 }

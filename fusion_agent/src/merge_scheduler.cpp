@@ -2,6 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <atomic>
+
 namespace mrslam::fusion {
 
 std::size_t knownCellCount(const GridMap& map) {
@@ -97,13 +100,37 @@ bool MergeScheduler::isDue(const PairState& state, const PairMaps& maps, bool pl
          grewMaterially(maps.known_to, state.known_to, settings_.material_change);
 }
 
+namespace {
+
+/// Calls `work(k)` for k = 0 .. count - 1 on up to `threads` threads (the caller's one of them).
+template <typename Work>
+void runOnThreads(std::size_t count, int threads, const Work& work) {
+  std::atomic<std::size_t> next{0};
+  const auto drain = [&] {
+    for (std::size_t k = next++; k < count; k = next++) {
+      work(k);
+    }
+  };
+  std::vector<std::thread> helpers;
+  const std::size_t helper_count = std::min(count, static_cast<std::size_t>(std::max(1, threads)));
+  for (std::size_t i = 1; i < helper_count; ++i) {
+    helpers.emplace_back(drain);
+  }
+  drain();
+  for (std::thread& helper : helpers) {
+    helper.join();
+  }
+}
+
+}  // namespace
+
 std::vector<MergeAttempt> MergeScheduler::runDue(const std::vector<RobotMap>& maps,
                                                  Clock::time_point now) {
-  std::vector<MergeAttempt> attempts;
   std::vector<std::size_t> known(maps.size());
   for (std::size_t i = 0; i < maps.size(); ++i) {
     known[i] = knownCellCount(maps[i].map);
   }
+  std::vector<std::pair<std::size_t, std::size_t>> due;  // (from, to)
   for (std::size_t to = 0; to < maps.size(); ++to) {
     for (std::size_t from = to + 1; from < maps.size(); ++from) {
       if (known[from] == 0 || known[to] == 0) {
@@ -116,13 +143,24 @@ std::vector<MergeAttempt> MergeScheduler::runDue(const std::vector<RobotMap>& ma
         continue;
       }
       state = {now, pair.known_from, pair.known_to, true, pair.both_final};
-      attempts.push_back(mergePair(maps[from], maps[to]));
+      due.emplace_back(from, to);
     }
   }
+  // The mergers are made here, one at a time (their settings are read from the config), and
+  // each merges on one thread.
+  std::vector<std::unique_ptr<MapMerger>> mergers;
+  for (std::size_t k = 0; k < due.size(); ++k) {
+    mergers.push_back(factory_());
+  }
+  std::vector<MergeAttempt> attempts(due.size());
+  runOnThreads(due.size(), settings_.threads, [&](std::size_t k) {
+    attempts[k] = mergePair(*mergers[k], maps[due[k].first], maps[due[k].second]);
+  });
   return attempts;
 }
 
-MergeAttempt MergeScheduler::mergePair(const RobotMap& from, const RobotMap& to) {
+MergeAttempt MergeScheduler::mergePair(MapMerger& merger, const RobotMap& from,
+                                       const RobotMap& to) {
   MergeAttempt attempt;
   attempt.from = from.robot_id;
   attempt.to = to.robot_id;
@@ -130,7 +168,12 @@ MergeAttempt MergeScheduler::mergePair(const RobotMap& from, const RobotMap& to)
   if (from.map.geometry.resolution_m != to.map.geometry.resolution_m) {
     attempt.result.reason = "the maps' resolutions differ";
   } else {
-    attempt.result = factory_()->merge(from.map, to.map);
+    try {
+      attempt.result = merger.merge(from.map, to.map);
+    } catch (const std::exception& error) {  // on a merge thread: reported, not fatal
+      attempt.result = MergeResult{};
+      attempt.result.reason = std::string("the merge failed: ") + error.what();
+    }
   }
   attempt.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   if (attempt.result.accepted) {

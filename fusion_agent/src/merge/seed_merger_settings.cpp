@@ -166,6 +166,8 @@ void readGlobalSearchSettings(const Config& section, SeedMergerSettings& setting
   settings.global_search = section.getBool("global_search", settings.global_search);
   settings.global_fine_cells =
       readInt(section, "global_fine_cells", settings.global_fine_cells, {0, 64});
+  settings.global_max_grid_cells =
+      readInt(section, "global_max_grid_cells", settings.global_max_grid_cells, {0, 100000});
   settings.global_fine_min_verification = section.getDouble(
       "global_fine_min_verification", settings.global_fine_min_verification, {0.0, 1.0});
   settings.global_free_min_verification = section.getDouble(

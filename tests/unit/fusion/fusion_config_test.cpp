@@ -74,6 +74,13 @@ TEST(FusionConfigTest, BadValuesNameFileLineAndKey) {
   EXPECT_THAT(loadError("exit_when_final: true\n"),
               HasSubstr("exit_when_final: needs expected_robots"));
   EXPECT_THAT(loadError("dds:\n  domain_id: 300\n"), HasSubstr("fusion.yaml:2: dds.domain_id"));
+  EXPECT_THAT(loadError("merge:\n  threads: 0\n"),
+              HasSubstr("fusion.yaml:2: merge.threads: 0 is out of range"));
+}
+
+TEST(FusionConfigTest, MergeThreadsAreReadWithTwoByDefault) {
+  EXPECT_EQ(loadFusionConfig(writeConfig("merge:\n  method: none\n")).merge.threads, 2);
+  EXPECT_EQ(loadFusionConfig(writeConfig("merge:\n  threads: 4\n")).merge.threads, 4);
 }
 
 TEST(FusionConfigTest, TheMergeMethodMakesItsMergerWithItsSettings) {

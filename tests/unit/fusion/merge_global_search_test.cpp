@@ -5,6 +5,7 @@
 
 #include <random>
 
+#include "merge_crop_pairs.hpp"
 #include "merge_test_maps.hpp"
 #include "mrslam/fusion/merge/global_search.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
@@ -85,7 +86,7 @@ TEST(MergeGlobalSearchTest, SettingsComeFromTheSeedSection) {
   const SeedMergerSettings settings = loadSeedMergerSettings(Config::loadString(
       "global_search: false\nglobal_coarse_cells: 6\nglobal_rotation_step_deg: 2\n"
       "global_hypotheses: 20\nglobal_candidates: 9\nglobal_free_agreement_weight: 0.3\n"
-      "global_free_agreement_hypotheses: 4\n",
+      "global_free_agreement_hypotheses: 4\nglobal_max_grid_cells: 0\n",
       "merge.yaml"));
   EXPECT_FALSE(settings.global_search);
   EXPECT_EQ(settings.global.coarse_cells, 6);
@@ -94,6 +95,43 @@ TEST(MergeGlobalSearchTest, SettingsComeFromTheSeedSection) {
   EXPECT_EQ(settings.global_candidates, 9);
   EXPECT_DOUBLE_EQ(settings.global.free_agreement_weight, 0.3);
   EXPECT_EQ(settings.global.free_agreement_hypotheses, 4);
+  EXPECT_EQ(settings.global_max_grid_cells, 0);
+  EXPECT_EQ(SeedMergerSettings{}.global_max_grid_cells, 160);
+  EXPECT_THROW(loadSeedMergerSettings(Config::loadString("global_max_grid_cells: -1\n", "m.yaml")),
+               ConfigError);
+}
+
+TEST(MergeGlobalSearchTest, LargeMapsAreSweptOnLargerBlocks) {
+  const GridMap crop(GridGeometry{0.05, 400, 300, Eigen::Vector2d::Zero()}, GridMap::kUnknown);
+  const GridMap building(GridGeometry{0.05, 1915, 1539, Eigen::Vector2d::Zero()},
+                         GridMap::kUnknown);
+  EXPECT_EQ(globalBlockCells(crop, crop, 4, 160), 4);       // 100 blocks a side
+  EXPECT_EQ(globalBlockCells(crop, building, 4, 160), 12);  // 1915 / 160, rounded up
+  EXPECT_EQ(globalBlockCells(building, crop, 2, 320), 6);
+  EXPECT_EQ(globalBlockCells(crop, building, 4, 0), 4);  // no limit
+  EXPECT_EQ(globalBlockCells(crop, crop, 0, 0), 1);
+}
+
+// Two turned 700-cell windows of the ACES map (crops of about 1000 cells a side) swept on
+// blocks of 7 cells: the truth is still among the coarse hypotheses, within about a block and
+// half a rotation step.
+TEST(MergeGlobalSearchTest, AWholeBuildingOnLargerBlocksStillHoldsTheTruth) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
+  const MergeCase merge_case =
+      merge_test::cut(merge_test::CropPair{"freiburg-aces.pgm",
+                                           0,
+                                           {{150, 120}, 700, 0.6, {10, 20}, {30, 5}},
+                                           {{380, 330}, 700, -0.35, {25, 3}, {4, 18}}});
+  GlobalSearchSettings settings;
+  settings.coarse_cells = globalBlockCells(merge_case.a, merge_case.b, settings.coarse_cells, 160);
+  ASSERT_EQ(settings.coarse_cells, 7);
+  const std::vector<GlobalHypothesis> hypotheses =
+      globalSearch(merge_case.a, merge_case.b, settings, SimilaritySettings{});
+  const bool has_truth = std::any_of(hypotheses.begin(), hypotheses.end(), [&](const auto& h) {
+    const CaseError error = caseError(merge_case, h.T_to_from);
+    return error.distance_cells <= 2.0 * settings.coarse_cells && error.angle_rad <= 3.0 * kDegree;
+  });
+  EXPECT_TRUE(has_truth) << hypotheses.size() << " hypotheses";
 }
 
 TEST(MergeGlobalSearchTest, TheSeedMergerNamesTheStepOfItsAnswer) {

@@ -2,13 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
+#include <thread>
+
 namespace mrslam::fusion {
 namespace {
 
-// A merger whose answer the test sets; it counts its calls.
+// A merger whose answer the test sets; it counts its calls (from any merge thread).
 class ScriptedMerger : public MapMerger {
  public:
-  ScriptedMerger(int& calls, bool accept) : calls_(calls), accept_(accept) {}
+  ScriptedMerger(std::atomic<int>& calls, bool accept) : calls_(calls), accept_(accept) {}
   MergeResult merge(const GridMap&, const GridMap&) override {
     ++calls_;
     MergeResult result;
@@ -22,8 +26,37 @@ class ScriptedMerger : public MapMerger {
   std::string name() const override { return "scripted"; }
 
  private:
-  int& calls_;
+  std::atomic<int>& calls_;
   bool accept_;
+};
+
+// A merger that waits (up to 10 s) until `wanted` merges are running at once, and records the
+// most it saw; it refuses with the pair's size in its reason.
+class MeetingMerger : public MapMerger {
+ public:
+  MeetingMerger(std::atomic<int>& running, std::atomic<int>& most, int wanted)
+      : running_(running), most_(most), wanted_(wanted) {}
+  MergeResult merge(const GridMap& from, const GridMap& to) override {
+    const int now = ++running_;
+    int seen = most_.load();
+    while (now > seen && !most_.compare_exchange_weak(seen, now)) {
+    }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (most_.load() < wanted_ && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    --running_;
+    MergeResult result;
+    result.reason =
+        std::to_string(knownCellCount(from)) + " onto " + std::to_string(knownCellCount(to));
+    return result;
+  }
+  std::string name() const override { return "meeting"; }
+
+ private:
+  std::atomic<int>& running_;
+  std::atomic<int>& most_;
+  int wanted_;
 };
 
 RobotMap mapOf(const std::string& id, int known_cells) {
@@ -42,7 +75,7 @@ RobotMap mapOf(const std::string& id, int known_cells) {
 
 TEST(MergeSchedulerTest, MergesNewPairsThenOnlyAfterTheIntervalAndMaterialChange) {
   TeamGraph graph;
-  int calls = 0;
+  std::atomic<int> calls{0};
   MergeSchedulerSettings settings;
   settings.min_interval_s = 10.0;
   settings.material_change = 0.1;
@@ -73,7 +106,7 @@ TEST(MergeSchedulerTest, MergesNewPairsThenOnlyAfterTheIntervalAndMaterialChange
 
 TEST(MergeSchedulerTest, FinalMapsAreMergedOnceMoreWhateverTheInterval) {
   TeamGraph graph;
-  int calls = 0;
+  std::atomic<int> calls{0};
   MergeSchedulerSettings settings;
   settings.min_interval_s = 100.0;
   MergeScheduler scheduler(
@@ -99,7 +132,7 @@ TEST(MergeSchedulerTest, RefusalsLeaveVerifiedTransformsInPlace) {
   known.T_to_from = SE2(3, 0, 0);
   known.verification = 0.9;
   graph.addVerified(known);
-  int calls = 0;
+  std::atomic<int> calls{0};
   MergeScheduler scheduler(
       MergeSchedulerSettings{}, [&] { return std::make_unique<ScriptedMerger>(calls, false); },
       graph);
@@ -113,7 +146,7 @@ TEST(MergeSchedulerTest, RefusalsLeaveVerifiedTransformsInPlace) {
 
 TEST(MergeSchedulerTest, BackgroundThreadMergesOfferedMaps) {
   TeamGraph graph;
-  int calls = 0;
+  std::atomic<int> calls{0};
   MergeScheduler scheduler(
       MergeSchedulerSettings{}, [&] { return std::make_unique<ScriptedMerger>(calls, true); },
       graph);
@@ -124,6 +157,48 @@ TEST(MergeSchedulerTest, BackgroundThreadMergesOfferedMaps) {
   EXPECT_TRUE(scheduler.takeAttempts().empty());
   scheduler.stop();
   EXPECT_EQ(calls, 1);
+}
+
+// Three robots' maps: their three pairs merged two at a time with `threads` 2, one at a time with
+// 1; either way the attempts come in pair order.
+TEST(MergeSchedulerTest, DuePairsAreMergedOnTheConfiguredThreadsInPairOrder) {
+  for (const int threads : {2, 1}) {
+    TeamGraph graph;
+    std::atomic<int> running{0};
+    std::atomic<int> most{0};
+    MergeSchedulerSettings settings;
+    settings.threads = threads;
+    MergeScheduler scheduler(
+        settings, [&] { return std::make_unique<MeetingMerger>(running, most, threads); }, graph);
+    const auto attempts = scheduler.runDue({mapOf("a", 10), mapOf("b", 20), mapOf("c", 30)},
+                                           MergeScheduler::Clock::now());
+    EXPECT_EQ(most.load(), threads) << "merges running at once";
+    ASSERT_EQ(attempts.size(), 3u);
+    EXPECT_EQ(attempts[0].from + attempts[0].to + attempts[0].result.reason, "ba20 onto 10");
+    EXPECT_EQ(attempts[1].from + attempts[1].to + attempts[1].result.reason, "ca30 onto 10");
+    EXPECT_EQ(attempts[2].from + attempts[2].to + attempts[2].result.reason, "cb30 onto 20");
+  }
+}
+
+// A merger that throws on a merge thread: the attempt says so and nothing stops.
+TEST(MergeSchedulerTest, AMergeThatThrowsIsAFailedAttempt) {
+  class ThrowingMerger : public MapMerger {
+   public:
+    MergeResult merge(const GridMap&, const GridMap&) override {
+      throw std::runtime_error("out of memory");
+    }
+    std::string name() const override { return "throwing"; }
+  };
+  TeamGraph graph;
+  MergeScheduler scheduler(
+      MergeSchedulerSettings{}, [] { return std::make_unique<ThrowingMerger>(); }, graph);
+  const auto attempts = scheduler.runDue({mapOf("a", 10), mapOf("b", 10), mapOf("c", 10)},
+                                         MergeScheduler::Clock::now());
+  ASSERT_EQ(attempts.size(), 3u);
+  for (const MergeAttempt& attempt : attempts) {
+    EXPECT_FALSE(attempt.result.accepted);
+    EXPECT_EQ(attempt.result.reason, "the merge failed: out of memory");
+  }
 }
 
 }  // namespace

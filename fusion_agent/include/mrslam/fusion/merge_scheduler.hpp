@@ -21,6 +21,7 @@ struct MergeSchedulerSettings {
   double min_interval_s = 5.0;   ///< least time between two merges of one pair
   double material_change = 0.1;  ///< re-merge a pair when a map's known cells grew by this fraction
   bool refine_accepted = true;   ///< keep re-merging placed pairs as maps grow (refinement)
+  int threads = 2;               ///< due pairs merged at once, each on its own thread
 };
 
 /// One merge that was run, for the transforms topic and the logs.
@@ -48,7 +49,8 @@ class MergeScheduler {
   void offer(std::vector<RobotMap> maps);
   /// Waits until the maps last offered have been considered; false on time-out.
   bool waitIdle(double timeout_s);
-  /// Merges every due pair of `maps` now, on the calling thread (the background thread's step).
+  /// Merges every due pair of `maps` now, `threads` pairs at a time (the calling thread one of
+  /// them; the background thread's step). The attempts come in pair order.
   std::vector<MergeAttempt> runDue(const std::vector<RobotMap>& maps, Clock::time_point now);
   /// Attempts made since the last call.
   std::vector<MergeAttempt> takeAttempts();
@@ -71,7 +73,8 @@ class MergeScheduler {
 
   bool isDue(const PairState& state, const PairMaps& maps, bool placed,
              Clock::time_point now) const;
-  MergeAttempt mergePair(const RobotMap& from, const RobotMap& to);
+  /// One merge (on any thread): the attempt, and a verified result into the graph.
+  MergeAttempt mergePair(MapMerger& merger, const RobotMap& from, const RobotMap& to);
   void loop();
 
   MergeSchedulerSettings settings_;

@@ -206,8 +206,10 @@ struct SeedMergerSettings {
   bool global_search = true;             ///< try the global search when all else is refused
   GlobalSearchSettings global;           ///< step 10 (global_search.hpp)
   double global_polish_step_rad = 0.5 * M_PI / 180.0;  ///< step 10: rotation step of the refinement
-  int global_candidates = 6;  ///< step 10: refined hypotheses given the ±δ search
-  int global_fine_cells = 2;  ///< finer sweep near step 10's rotations: coarse cells (0: off)
+  int global_candidates = 6;        ///< step 10: refined hypotheses given the ±δ search
+  int global_fine_cells = 2;        ///< finer sweep near step 10's rotations: coarse cells (0: off)
+  int global_max_grid_cells = 160;  ///< step 10: longest side in blocks (the finer sweep's: twice
+                                    ///< that); larger maps get larger blocks (0: no limit)
   double global_fine_min_verification = 0.96;  ///< least V of a transform of the finer sweep
   double global_free_min_verification = 0.98;  ///< least V of a transform found by free agreement
   std::uint32_t seed = 1;                      ///< seed of the random segment starts
