@@ -82,7 +82,19 @@ void expectEveryRobotPlaced(const std::string& team_file, const std::filesystem:
 
 TEST(TeamLauncherTest, TheIntelTeamFileRunsSplitsAndPlacesEveryRobot) {
   MRSLAM_REQUIRE_SHARED_DATA("logs/carmen-intel-corrected.log.gz");
-  expectEveryRobotPlaced("config/intel_team.yaml", scratchFolder("intel"));
+  const auto out = scratchFolder("intel");
+  expectEveryRobotPlaced("config/intel_team.yaml", out);
+  // --evaluate-only starts nothing and evaluates the finished run again.
+  const auto evaluation = out / "team" / "evaluation.json";
+  const nlohmann::json first = readJson(evaluation.string());
+  std::filesystem::remove(evaluation);
+  auto again = startAgent("tools/mrslam_team",
+                          {sourcePath("config/intel_team.yaml"), "--bin-dir", binaryPath(""),
+                           "--out", (out / "team").string(), "--evaluate-only"},
+                          (out / "evaluate.log").string());
+  EXPECT_EQ(finish(*again, 60.0), 0) << logOf(*again);
+  EXPECT_EQ(readJson(evaluation.string()), first);
+  EXPECT_EQ(logOf(*again).find("started"), std::string::npos) << "no agent started";
 }
 
 // Two more buildings with the same configs. Their robots' maps show walls one robot never

@@ -223,6 +223,9 @@ void evaluateOne(const fs::path& folder, const TeamPlacements& truth,
   }
   std::ofstream file(folder / "evaluation.json");
   file << nlohmann::json{{"reference", truth.reference}, {"robots", robots}}.dump(2) << "\n";
+  if (!file) {
+    throw std::runtime_error((folder / "evaluation.json").string() + ": cannot write");
+  }
 }
 
 }  // namespace
