@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "mrslam/drivers/carmen_reader.hpp"
+#include "mrslam/robot/evaluation.hpp"
 #include "mrslam/robot/trajectory_io.hpp"
 #include "mrslam/robot/trajectory_metrics.hpp"
 
@@ -32,6 +33,7 @@ RobotPlacement placementOf(const nlohmann::json& robot, const std::string& where
   RobotPlacement placement;
   placement.id = robot.at("id").get<std::string>();
   placement.placed = robot.at("placed").get<bool>();
+  placement.log = robot.value("log", "");
   if (placement.placed) {
     const std::string at = where + " (" + placement.id + ")";
     const double x = number(robot, "x", at);  // in this order: the first bad field is named
@@ -75,22 +77,17 @@ std::vector<SE2> correctedTrajectory(const std::string& carmen_log) {
   settings.path = carmen_log;
   settings.malformed_policy = drivers::MalformedPolicy::kStop;
   drivers::CarmenReader reader(settings);
-  std::vector<SE2> trajectory;
-  std::optional<SE2> T_origin_log;
-  while (const std::optional<Sample> sample = reader.next()) {
-    const auto* scan = std::get_if<LaserScan>(&*sample);
-    if (scan == nullptr) {
-      continue;
-    }
-    if (!scan->logged_pose) {
-      throw std::runtime_error(carmen_log + ": a scan without its corrected pose");
-    }
-    if (!T_origin_log) {
-      T_origin_log = scan->logged_pose->inverse();
-    }
-    trajectory.push_back(*T_origin_log * *scan->logged_pose);
+  std::optional<std::vector<SE2>> trajectory = robot::groundTruth(robot::readAllSamples(reader));
+  if (!trajectory) {
+    throw std::runtime_error(carmen_log + ": a scan without its corrected pose");
   }
-  return trajectory;
+  if (!trajectory->empty()) {
+    const SE2 T_origin_log = trajectory->front().inverse();
+    for (SE2& pose : *trajectory) {
+      pose = T_origin_log * pose;
+    }
+  }
+  return *trajectory;
 }
 
 SE2 estimateToCorrected(const std::vector<SE2>& estimated, const std::vector<SE2>& corrected) {
@@ -168,27 +165,21 @@ namespace {
 namespace fs = std::filesystem;
 
 /// T_c_e of every robot of `truth` whose trajectory and segment log are there.
-std::map<std::string, SE2> alignments(const fs::path& out, const fs::path& truth_path) {
-  std::ifstream file(truth_path);
-  const nlohmann::json document = nlohmann::json::parse(file, nullptr, false);
+std::map<std::string, SE2> alignments(const fs::path& out, const TeamPlacements& truth) {
   std::map<std::string, SE2> T_corrected_estimated;
-  if (document.is_discarded() || !document.contains("robots")) {
-    return T_corrected_estimated;
-  }
-  for (const nlohmann::json& robot : document.at("robots")) {
-    const fs::path trajectory = out / "robots_local" / (robot.value("id", "") + ".tum");
-    const std::string log = robot.value("log", "");
-    if (log.empty() || !fs::exists(trajectory)) {
-      spdlog::warn("team: no trajectory of {} ({}): its truth stays the split's",
-                   robot.value("id", "?"), trajectory.string());
+  for (const RobotPlacement& robot : truth.robots) {
+    const fs::path trajectory = out / "robots_local" / (robot.id + ".tum");
+    if (robot.log.empty() || !fs::exists(trajectory)) {
+      spdlog::warn("team: no trajectory of {} ({}): its truth stays the split's", robot.id,
+                   trajectory.string());
       continue;
     }
     std::vector<SE2> estimated;
     for (const robot::StampedPose& pose : robot::readTumTrajectory(trajectory.string())) {
       estimated.push_back(pose.pose);
     }
-    T_corrected_estimated[robot.at("id").get<std::string>()] =
-        estimateToCorrected(estimated, correctedTrajectory(log));
+    T_corrected_estimated[robot.id] =
+        estimateToCorrected(estimated, correctedTrajectory(robot.log));
   }
   return T_corrected_estimated;
 }
@@ -234,8 +225,7 @@ bool evaluateTeamRun(const std::string& out, const std::vector<std::string>& fus
   const fs::path truth_path = fs::path(out) / "segments" / "truth.json";
   try {
     const TeamPlacements truth = readPlacements(truth_path.string());
-    const TeamPlacements truth_estimated =
-        truthInEstimatedFrames(truth, alignments(out, truth_path));
+    const TeamPlacements truth_estimated = truthInEstimatedFrames(truth, alignments(out, truth));
     writePlacements(truth_estimated,
                     (fs::path(out) / "segments" / "truth_estimated.json").string());
     for (const std::string& folder : fusion_folders) {

@@ -680,13 +680,7 @@ double exhaustiveScore(const GridMap& from, const GridMap& to, const GridTransfo
 
 int searchCellSize(const GridMap& from, const GridMap& to,
                    const ExhaustiveSearchSettings& settings) {
-  const int cell_size = std::max(1, settings.cell_size);
-  if (settings.max_grid_cells <= 0) {
-    return cell_size;
-  }
-  const int side =
-      std::max({from.geometry.width, from.geometry.height, to.geometry.width, to.geometry.height});
-  return std::max(cell_size, (side + settings.max_grid_cells - 1) / settings.max_grid_cells);
+  return blockCellsForSize(from, to, settings.cell_size, settings.max_grid_cells);
 }
 
 std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const GridMap& to,

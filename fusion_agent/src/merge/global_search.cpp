@@ -141,16 +141,6 @@ bool sweeps(double theta, const GlobalSearchSettings& settings) {
 
 }  // namespace
 
-int globalBlockCells(const GridMap& from, const GridMap& to, int block_cells, int max_grid_cells) {
-  const int block = std::max(1, block_cells);
-  if (max_grid_cells <= 0) {
-    return block;
-  }
-  const int side =
-      std::max({from.geometry.width, from.geometry.height, to.geometry.width, to.geometry.height});
-  return std::max(block, (side + max_grid_cells - 1) / max_grid_cells);
-}
-
 std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& to,
                                            const GlobalSearchSettings& settings,
                                            const SimilaritySettings& classes) {

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "mrslam/fusion/merge/map_merger.hpp"
@@ -30,6 +31,16 @@ GridTransform metricToGridTransform(const SE2& T_to_from, const GridGeometry& fr
   const Eigen::Vector2d zero_cell = (image_of_zero - to.origin_m) / to.resolution_m - half;
   transform.t_cells = zero_cell;
   return transform;
+}
+
+int blockCellsForSize(const GridMap& from, const GridMap& to, int block_cells, int max_blocks) {
+  const int block = std::max(1, block_cells);
+  if (max_blocks <= 0) {
+    return block;
+  }
+  const int side =
+      std::max({from.geometry.width, from.geometry.height, to.geometry.width, to.geometry.height});
+  return std::max(block, (side + max_blocks - 1) / max_blocks);
 }
 
 }  // namespace mrslam::fusion

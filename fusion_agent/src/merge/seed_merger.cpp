@@ -153,7 +153,7 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
   if ((candidates.empty() || !refusal(refined).empty()) && settings_.global_search) {
     SeedMergerSettings sized = settings_;  // blocks large enough for the maps' size
     sized.global.coarse_cells =
-        globalBlockCells(from, to, settings_.global.coarse_cells, settings_.global_max_grid_cells);
+        blockCellsForSize(from, to, settings_.global.coarse_cells, settings_.global_max_grid_cells);
     const seed::GlobalHypotheses global =
         seed::globalHypotheses(from, to, scorer, inputs, sized);  // step 10
     addGlobalCandidates(global.by_walls, settings_.global_candidates, seed::Stage::kGlobalSearch,
@@ -161,8 +161,8 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
     if ((candidates.empty() || !refusal(refined).empty()) && settings_.global_fine_cells > 0 &&
         !global.by_walls.empty()) {
       SeedMergerSettings fine = settings_;  // step 10 again on a finer grid near its rotations
-      fine.global.coarse_cells = globalBlockCells(from, to, settings_.global_fine_cells,
-                                                  2 * settings_.global_max_grid_cells);
+      fine.global.coarse_cells = blockCellsForSize(from, to, settings_.global_fine_cells,
+                                                   2 * settings_.global_max_grid_cells);
       fine.global.free_agreement_hypotheses = 0;
       for (const seed::Hypothesis& hypothesis : global.by_walls) {
         fine.global.only_rotations_rad.push_back(hypothesis.T_to_from.theta_rad);

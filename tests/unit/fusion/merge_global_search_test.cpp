@@ -105,11 +105,11 @@ TEST(MergeGlobalSearchTest, LargeMapsAreSweptOnLargerBlocks) {
   const GridMap crop(GridGeometry{0.05, 400, 300, Eigen::Vector2d::Zero()}, GridMap::kUnknown);
   const GridMap building(GridGeometry{0.05, 1915, 1539, Eigen::Vector2d::Zero()},
                          GridMap::kUnknown);
-  EXPECT_EQ(globalBlockCells(crop, crop, 4, 160), 4);       // 100 blocks a side
-  EXPECT_EQ(globalBlockCells(crop, building, 4, 160), 12);  // 1915 / 160, rounded up
-  EXPECT_EQ(globalBlockCells(building, crop, 2, 320), 6);
-  EXPECT_EQ(globalBlockCells(crop, building, 4, 0), 4);  // no limit
-  EXPECT_EQ(globalBlockCells(crop, crop, 0, 0), 1);
+  EXPECT_EQ(blockCellsForSize(crop, crop, 4, 160), 4);       // 100 blocks a side
+  EXPECT_EQ(blockCellsForSize(crop, building, 4, 160), 12);  // 1915 / 160, rounded up
+  EXPECT_EQ(blockCellsForSize(building, crop, 2, 320), 6);
+  EXPECT_EQ(blockCellsForSize(crop, building, 4, 0), 4);  // no limit
+  EXPECT_EQ(blockCellsForSize(crop, crop, 0, 0), 1);
 }
 
 // Two turned 700-cell windows of the ACES map (crops of about 1000 cells a side) swept on
@@ -123,7 +123,7 @@ TEST(MergeGlobalSearchTest, AWholeBuildingOnLargerBlocksStillHoldsTheTruth) {
                                            {{150, 120}, 700, 0.6, {10, 20}, {30, 5}},
                                            {{380, 330}, 700, -0.35, {25, 3}, {4, 18}}});
   GlobalSearchSettings settings;
-  settings.coarse_cells = globalBlockCells(merge_case.a, merge_case.b, settings.coarse_cells, 160);
+  settings.coarse_cells = blockCellsForSize(merge_case.a, merge_case.b, settings.coarse_cells, 160);
   ASSERT_EQ(settings.coarse_cells, 7);
   const std::vector<GlobalHypothesis> hypotheses =
       globalSearch(merge_case.a, merge_case.b, settings, SimilaritySettings{});

@@ -61,12 +61,13 @@ TEST(TeamEvaluationTest, PlacementsFilesAreReadAndBadOnesNamed) {
 
 TEST(TeamEvaluationTest, ErrorsAreMeasuredForEveryRobotButTheReference) {
   TeamPlacements truth{"robot1",
-                       {{"robot1", true, SE2()},
-                        {"robot2", true, SE2(4.0, 1.0, 3.1)},
-                        {"robot3", true, SE2(-2.0, 5.0, 0.5)}}};
-  TeamPlacements found{
-      "robot1",
-      {{"robot1", true, SE2()}, {"robot2", true, SE2(4.03, 0.96, -3.1)}, {"robot3", false, SE2()}}};
+                       {{"robot1", true, SE2(), ""},
+                        {"robot2", true, SE2(4.0, 1.0, 3.1), ""},
+                        {"robot3", true, SE2(-2.0, 5.0, 0.5), ""}}};
+  TeamPlacements found{"robot1",
+                       {{"robot1", true, SE2(), ""},
+                        {"robot2", true, SE2(4.03, 0.96, -3.1), ""},
+                        {"robot3", false, SE2(), ""}}};
   const std::vector<PlacementError> errors = comparePlacements(found, truth);
   ASSERT_EQ(errors.size(), 2u);
   EXPECT_EQ(errors[0].id, "robot2");
@@ -85,7 +86,8 @@ TEST(TeamEvaluationTest, TheTruthInEstimatedFramesComposesTheAlignments) {
   const SE2 T_c1_c2(6.0, -1.0, 2.0);
   const SE2 T_c1_e1(0.3, 0.2, 0.25);
   const SE2 T_c2_e2(-0.4, 0.1, -0.1);
-  const TeamPlacements truth{"robot1", {{"robot1", true, SE2()}, {"robot2", true, T_c1_c2}}};
+  const TeamPlacements truth{"robot1",
+                             {{"robot1", true, SE2(), ""}, {"robot2", true, T_c1_c2, ""}}};
   const TeamPlacements estimated =
       truthInEstimatedFrames(truth, {{"robot1", T_c1_e1}, {"robot2", T_c2_e2}});
   const SE2& T_e1_e2 = estimated.find("robot2")->T_reference_origin;

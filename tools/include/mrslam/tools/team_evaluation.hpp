@@ -24,6 +24,7 @@ struct RobotPlacement {
   std::string id;
   bool placed = false;
   SE2 T_reference_origin;  ///< valid when placed
+  std::string log;         ///< the segment it replayed (truth.json's "log"; empty elsewhere)
 };
 
 struct TeamPlacements {

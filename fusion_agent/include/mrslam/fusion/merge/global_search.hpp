@@ -54,12 +54,6 @@ struct GlobalHypothesis {
   bool by_free_agreement = false;  ///< a peak of s_f (step 5), not of s
 };
 
-/// The block of the sweep for two maps: `block_cells`, or larger so that the longest side of
-/// either map makes at most `max_grid_cells` blocks (0: no limit). The DFTs' work grows with the
-/// square of the side (and its log): large maps would take seconds on small blocks, and the
-/// coarse answer is refined at full resolution anyway.
-int globalBlockCells(const GridMap& from, const GridMap& to, int block_cells, int max_grid_cells);
-
 /// Steps 1-5: the best coarse transforms of `from` onto `to` by s, best first, then those by s_f,
 /// best first (empty when either map is empty or has no occupied cell).
 std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& to,

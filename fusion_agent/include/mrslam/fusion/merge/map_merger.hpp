@@ -64,6 +64,11 @@ SE2 gridTransformToMetric(const GridTransform& T_to_from_cells, const GridGeomet
 GridTransform metricToGridTransform(const SE2& T_to_from, const GridGeometry& from,
                                     const GridGeometry& to);
 
+/// Cells per block of a search over two maps: `block_cells` (at least 1), or larger so that the
+/// longest side of either map makes at most `max_blocks` blocks (0: no limit). The searches'
+/// work grows with a power of the side; their coarse answers are refined at full resolution.
+int blockCellsForSize(const GridMap& from, const GridMap& to, int block_cells, int max_blocks);
+
 /// Which of block 9's tests refused a merge's transform (SeedMerger's acceptance, which the
 /// exhaustive and virtual-robot mergers share); kUnspecified when accepted or refused elsewhere.
 enum class MergeRefusal {
