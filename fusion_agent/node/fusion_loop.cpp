@@ -175,7 +175,9 @@ void FusionLoop::useRendezvousOutcome(const RendezvousOutcome& outcome) {
         attempt.from, attempt.to, which_maps, outcome.check.reason,
         withdrawn ? "; its placement is withdrawn" : "");
   } else if (!outcome.short_of_overlap) {
-    spdlog::warn("fusion: {} -> {}: {}", attempt.from, attempt.to, outcome.check.reason);
+    spdlog::warn("fusion: {} -> {} ({} maps): {}{}", attempt.from, attempt.to, which_maps,
+                 outcome.check.reason,
+                 outcome.on_final_maps ? "" : "; checked again on grown and final maps");
   }
 }
 

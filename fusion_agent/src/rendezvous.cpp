@@ -70,9 +70,12 @@ std::vector<RendezvousHypothesis> RendezvousBook::takeHypotheses() {
       continue;
     }
     used[candidate.a] = used[candidate.b] = true;
-    const Sighting& a_sees_b = open_[candidate.a];
-    const Sighting& b_sees_a = open_[candidate.b];
-    // T_to_from with to = a (the observer of the first sighting), from = b.
+    // T_to_from with to = a, the robot whose id sorts first, and from = b: a pair's check fits
+    // the same map into the same other whichever robot's sighting arrived first (the fit is not
+    // symmetric, so the order of arrival would otherwise change the answer).
+    const bool a_first = open_[candidate.a].observer < open_[candidate.b].observer;
+    const Sighting& a_sees_b = a_first ? open_[candidate.a] : open_[candidate.b];
+    const Sighting& b_sees_a = a_first ? open_[candidate.b] : open_[candidate.a];
     hypotheses.push_back({a_sees_b.observed, a_sees_b.observer,
                           rendezvousTransform(a_sees_b, b_sees_a),
                           std::max(a_sees_b.stamp, b_sees_a.stamp)});

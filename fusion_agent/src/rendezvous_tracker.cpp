@@ -24,7 +24,7 @@ const RobotMap* mapOf(const std::vector<RobotMap>& maps, const std::string& robo
 
 void RendezvousTracker::add(const std::vector<RendezvousHypothesis>& hypotheses) {
   for (const RendezvousHypothesis& hypothesis : hypotheses) {
-    held_.push_back({hypothesis, 0, false, SE2(), 0, 0});
+    held_.push_back({hypothesis, 0, false, true, SE2(), 0, 0});
     added_since_seen_ = true;
   }
   if (held_.size() > max_held_) {
@@ -37,11 +37,11 @@ bool RendezvousTracker::isDue(const Held& held, const MapsOfPair& maps,
   if (held.checked_at_version == version) {
     return false;
   }
-  if (!held.verified) {
-    return true;  // waiting for overlap: every change of the maps may bring it
+  if (held.waiting_for_overlap) {
+    return true;  // not checked yet, or short of overlap: every change of the maps may bring it
   }
   if (maps.both_final()) {
-    return true;  // held verified ones are dropped after their check on the final maps
+    return true;  // every rendezvous is checked once on the final maps, then dropped
   }
   return grewMaterially(maps.known_from, held.known_from, material_change_) ||
          grewMaterially(maps.known_to, held.known_to, material_change_);
@@ -64,14 +64,15 @@ bool RendezvousTracker::check(Held& held, const MapsOfPair& maps, std::uint64_t 
   held.checked_at_version = version;
   held.known_from = maps.known_from;
   held.known_to = maps.known_to;
-  if (outcome.check.accepted) {
-    held.verified = true;
+  held.verified = outcome.check.accepted;
+  held.waiting_for_overlap = !held.verified && outcome.short_of_overlap;
+  if (held.verified) {
     held.T_to_from = outcome.check.T_to_from;
-    return !outcome.on_final_maps;  // the final maps' check is the last
   }
-  // Refused: a verified one is no longer backed by the maps; one short of overlap waits for the
-  // maps to grow into each other, unless they are final.
-  return !held.verified && outcome.short_of_overlap && !outcome.on_final_maps;
+  // Refused or not, a rendezvous stays until the final maps' check, the one that counts: early
+  // maps can refuse a right one (a door closed then, a person in the way) as they can let a
+  // wrong one through, and which early maps a check sees depends on when the messages came.
+  return !outcome.on_final_maps;
 }
 
 std::vector<RendezvousOutcome> RendezvousTracker::checkDue(const std::vector<RobotMap>& maps,

@@ -75,6 +75,25 @@ TEST(RendezvousTest, BookPairsMutualSightingsCloseInTimeOnce) {
   EXPECT_FALSE(book.add(sightingOf("a", "a", T_world_a, T_world_b.translation(), SE2(), 5.0)));
 }
 
+TEST(RendezvousTest, APairIsCheckedOneWayWhicheverSightingCameFirst) {
+  const SE2 T_world_a(1.0, -0.5, 0.3);
+  const SE2 T_world_b(2.5, 1.0, 2.0);
+  // a's map frame is the world's; b's is b's pose now (b at its map origin).
+  for (const bool b_first : {false, true}) {
+    RendezvousBook book;
+    const Sighting a_sees_b = sightingOf("a", "b", T_world_a, T_world_b.translation(), SE2(), 5.0);
+    const Sighting b_sees_a =
+        sightingOf("b", "a", T_world_b, T_world_a.translation(), T_world_b, 5.1);
+    ASSERT_TRUE(book.add(b_first ? b_sees_a : a_sees_b));
+    ASSERT_TRUE(book.add(b_first ? a_sees_b : b_sees_a));
+    const std::vector<RendezvousHypothesis> hypotheses = book.takeHypotheses();
+    ASSERT_EQ(hypotheses.size(), 1u);
+    EXPECT_EQ(hypotheses[0].from, "b") << "b's sighting first: " << b_first;
+    EXPECT_EQ(hypotheses[0].to, "a") << "b's sighting first: " << b_first;
+    expectPose(hypotheses[0].T_to_from, T_world_b, 1e-9);
+  }
+}
+
 /// Two overlapping crops of a real map, each in its own frame: the truth is a pure shift.
 struct CropPair {
   GridMap a;

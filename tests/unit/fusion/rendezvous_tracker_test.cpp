@@ -1,6 +1,6 @@
 // When the fusion agent checks a rendezvous against the maps: on arrival, again when the maps
-// have grown, once more on the final maps; and what it reports when grown maps refuse one that
-// the early maps let through.
+// have grown, once more on the final maps whatever the earlier checks said; and what it reports
+// when grown maps refuse one that the early maps let through.
 
 #include "mrslam/fusion/rendezvous_tracker.hpp"
 
@@ -132,6 +132,56 @@ TEST(RendezvousTrackerTest, AFitThatSlidAlongTheCorridorIsRefusedByTheFinalMapsA
   EXPECT_TRUE(outcomes[0].was_verified);
   EXPECT_EQ(outcomes[0].previous_T_to_from.x(), early_fit.x()) << "to withdraw what it placed";
   EXPECT_EQ(outcomes[0].previous_T_to_from.y(), early_fit.y());
+  EXPECT_EQ(held.held(), 0u);
+}
+
+/// b's early map with something across the corridor that a's map has as free floor (a door
+/// closed then, people standing): `width` cells of wall across it at `x`.
+std::vector<RobotMap> teamMapsWithCorridorBlockedInB(bool mapped_in_full, int x, int width) {
+  const GridMap map = building(mapped_in_full);
+  GridMap blocked = map;
+  fill(blocked, x, x + width - 1, kCorridorSouthWall + 1, kCorridorNorthWall - 1,
+       GridMap::kOccupied);
+  return {robotMap("a", map, false), robotMap("b", blocked, false)};
+}
+
+TEST(RendezvousTrackerTest, ARightRendezvousRefusedByTheEarlyMapsIsVerifiedByTheFinalMaps) {
+  RendezvousTracker held = tracker();
+  held.add({{"b", "a", SE2(0.05, 0.0, 0.0), {}}});
+  std::vector<RendezvousOutcome> outcomes =
+      held.checkDue(teamMapsWithCorridorBlockedInB(false, 100, 40), 1);
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_FALSE(outcomes[0].check.accepted) << "V " << outcomes[0].check.verification;
+  EXPECT_NE(outcomes[0].check.reason.find("V"), std::string::npos) << outcomes[0].check.reason;
+  EXPECT_FALSE(outcomes[0].short_of_overlap);
+  EXPECT_EQ(held.held(), 1u) << "refused by early maps, held for grown and final ones";
+  EXPECT_TRUE(held.checkDue(teamMapsWithCorridorBlockedInB(false, 100, 40), 2).empty())
+      << "no change of the maps is material: not checked again";
+
+  outcomes = held.checkDue(teamMaps(true, true), 3);
+  ASSERT_EQ(outcomes.size(), 1u);
+  ASSERT_TRUE(outcomes[0].check.accepted) << outcomes[0].check.reason;
+  EXPECT_TRUE(outcomes[0].on_final_maps);
+  EXPECT_FALSE(outcomes[0].was_verified) << "nothing of it to withdraw";
+  EXPECT_NEAR(outcomes[0].check.T_to_from.x(), 0.0, 0.05);
+  EXPECT_EQ(held.held(), 0u);
+}
+
+TEST(RendezvousTrackerTest, OneRefusedByGrownMapsIsStillCheckedOnTheFinalMaps) {
+  RendezvousTracker held = tracker();
+  held.add({{"b", "a", SE2(0.0, 0.05, 0.0), {}}});
+  ASSERT_TRUE(held.checkDue(teamMaps(false, false), 1).at(0).check.accepted);
+  std::vector<RendezvousOutcome> outcomes =
+      held.checkDue(teamMapsWithCorridorBlockedInB(true, 60, 120), 2);
+  ASSERT_EQ(outcomes.size(), 1u) << "the maps grew materially";
+  EXPECT_FALSE(outcomes[0].check.accepted);
+  EXPECT_TRUE(outcomes[0].was_verified) << "its placement is to be withdrawn";
+  EXPECT_EQ(held.held(), 1u);
+
+  outcomes = held.checkDue(teamMaps(true, true), 3);
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_TRUE(outcomes[0].check.accepted) << outcomes[0].check.reason;
+  EXPECT_FALSE(outcomes[0].was_verified) << "withdrawn at the refusal, not twice";
   EXPECT_EQ(held.held(), 0u);
 }
 

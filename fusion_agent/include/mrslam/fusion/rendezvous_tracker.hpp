@@ -1,9 +1,10 @@
 #pragma once
 // The rendezvous the fusion agent holds: each is checked against the two robots' maps when both
-// have arrived, again whenever they change while it still waits for overlap, and, once verified,
-// again when either map has grown materially and once more on both robots' final maps. A fit on
-// early, partial maps can slide along a corridor that has nothing to stop it (its V stays high,
-// the overlap being small); the final maps hold every scan, so their check is the one that counts.
+// have arrived, again whenever they change while it still waits for overlap, then again when
+// either map has grown materially, and once more on both robots' final maps, verified or refused
+// before. A fit on early, partial maps can slide along a corridor that has nothing to stop it (its
+// V stays high, the overlap being small), and early maps can refuse a right one; the final maps
+// hold every scan, so their check is the one that counts, whatever the earlier checks saw.
 
 #include <cstdint>
 #include <vector>
@@ -50,8 +51,9 @@ class RendezvousTracker {
   struct Held {
     RendezvousHypothesis hypothesis;
     std::uint64_t checked_at_version = 0;
-    bool verified = false;
-    SE2 T_to_from;  ///< the last verified fit
+    bool verified = false;            ///< accepted at its last check
+    bool waiting_for_overlap = true;  ///< not checked yet, or short of overlap at its last check
+    SE2 T_to_from;                    ///< the last verified fit
     std::size_t known_from = 0;
     std::size_t known_to = 0;
   };
