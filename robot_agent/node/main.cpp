@@ -37,6 +37,7 @@ struct Options {
   std::string config_dir = "config";
   std::string robot_id;
   int domain = -1;
+  int delivery_readers = -1;
   std::string discovery_server;
   std::string security_dir;
   std::string security_identity;
@@ -116,11 +117,14 @@ int runRobot(const Options& options, const RobotConfig& config) {
     logEkfSummary(config.robot_id, *ekf);
   }
   writeOutputs(options, *pipeline, config);
-  if (node && config.delivery_readers > 0 &&
-      !node->waitForMapDelivery(config.delivery_readers, config.delivery_timeout_s)) {
-    spdlog::warn("{}: no fusion agent took the final map within {} s", config.robot_id,
-                 config.delivery_timeout_s);
-    return 3;
+  if (node && config.delivery_readers > 0) {
+    spdlog::info("{}: waiting up to {} s for {} fusion agent(s) to hold the final map",
+                 config.robot_id, config.delivery_timeout_s, config.delivery_readers);
+    if (!node->waitForMapDelivery(config.delivery_readers, config.delivery_timeout_s)) {
+      spdlog::warn("{}: fewer than {} fusion agent(s) took the final map within {} s",
+                   config.robot_id, config.delivery_readers, config.delivery_timeout_s);
+      return 3;
+    }
   }
   return 0;
 }
@@ -166,6 +170,9 @@ RobotConfig loadConfig(Options& options) {
   RobotConfig config = mrslam::robot::loadRobotConfig(config_path);
   if (options.domain >= 0) {
     config.dds.domain_id = options.domain;
+  }
+  if (options.delivery_readers >= 0) {
+    config.delivery_readers = options.delivery_readers;
   }
   if (!options.discovery_server.empty()) {
     config.dds.discovery_server = options.discovery_server;
@@ -231,6 +238,10 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--domain", options.domain, "DDS domain id (overrides the config)")
       ->check(CLI::Range(0, 232));
+  app.add_option("--delivery-readers", options.delivery_readers,
+                 "at the end, wait until this many fusion agents hold the final map; 0: do not "
+                 "wait (overrides publish.delivery_readers)")
+      ->check(CLI::Range(0, 64));
   app.add_option("--discovery-server", options.discovery_server,
                  "IPv4:port of a Discovery Server to discover through (overrides the config)")
       ->check(

@@ -42,6 +42,11 @@ TEST(DecentralisedFusionTest, TwoFusionAgentsAgreeOnTheTransforms) {
                          (out / "team.log").string());
   ASSERT_EQ(finish(*team, 450.0), 0) << logOf(*team);
 
+  // Each robot left only once both fusion agents held its final map.
+  for (int k = 1; k <= 3; ++k) {
+    const auto log = out / "run" / "logs" / ("robot" + std::to_string(k) + ".log");
+    EXPECT_TRUE(waitForLog(log, "for 2 fusion agent(s) to hold the final map", 1, 0.0)) << log;
+  }
   const nlohmann::json truth = readJson(out / "run" / "segments" / "truth.json");
   const nlohmann::json a = readJson(out / "run" / "fusion_a" / "transforms.json");
   const nlohmann::json b = readJson(out / "run" / "fusion_b" / "transforms.json");

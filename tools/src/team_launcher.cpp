@@ -105,6 +105,9 @@ std::vector<std::string> robotArguments(const TeamRobot& robot, const TeamSpec& 
   argv.insert(argv.end(),
               {"--out", local.string(), "--trajectory-out",
                (local / ((robot.id.empty() ? robot.name : robot.id) + ".tum")).string()});
+  // Every fusion agent of the team must hold the final map before the robot leaves: waiting for
+  // the first alone let a robot go before a second fusion agent had discovered it.
+  argv.insert(argv.end(), {"--delivery-readers", std::to_string(team.fusion.size())});
   addDds(argv, team, options, robot.id);
   return argv;
 }
