@@ -130,7 +130,8 @@ std::vector<MergeAttempt> MergeScheduler::runDue(const std::vector<RobotMap>& ma
   for (std::size_t i = 0; i < maps.size(); ++i) {
     known[i] = knownCellCount(maps[i].map);
   }
-  std::vector<std::pair<std::size_t, std::size_t>> due;  // (from, to)
+  std::vector<std::pair<std::size_t, std::size_t>> due;         // (from, to)
+  std::vector<std::pair<std::size_t, std::size_t>> due_placed;  // refinements, merged after
   for (std::size_t to = 0; to < maps.size(); ++to) {
     for (std::size_t from = to + 1; from < maps.size(); ++from) {
       if (known[from] == 0 || known[to] == 0) {
@@ -143,9 +144,12 @@ std::vector<MergeAttempt> MergeScheduler::runDue(const std::vector<RobotMap>& ma
         continue;
       }
       state = {now, pair.known_from, pair.known_to, true, pair.both_final};
-      due.emplace_back(from, to);
+      (placed ? due_placed : due).emplace_back(from, to);
     }
   }
+  // Pairs without a verified transform first: with more due pairs than threads, a robot not yet
+  // placed waits for no refinement of pairs already placed.
+  due.insert(due.end(), due_placed.begin(), due_placed.end());
   // The mergers are made here, one at a time (their settings are read from the config), and
   // each merges on one thread.
   std::vector<std::unique_ptr<MapMerger>> mergers;

@@ -180,6 +180,28 @@ TEST(MergeSchedulerTest, DuePairsAreMergedOnTheConfiguredThreadsInPairOrder) {
   }
 }
 
+TEST(MergeSchedulerTest, PairsWithoutAVerifiedTransformAreMergedBeforeRefinements) {
+  TeamGraph graph;
+  PairwiseEstimate placed;
+  placed.from = "b";
+  placed.to = "a";
+  placed.verification = 0.95;
+  placed.method = "scripted";
+  ASSERT_TRUE(graph.addVerified(placed));
+  std::atomic<int> running{0};
+  std::atomic<int> most{0};
+  MergeSchedulerSettings settings;
+  settings.threads = 1;
+  MergeScheduler scheduler(
+      settings, [&] { return std::make_unique<MeetingMerger>(running, most, 1); }, graph);
+  const auto attempts = scheduler.runDue({mapOf("a", 10), mapOf("b", 20), mapOf("c", 30)},
+                                         MergeScheduler::Clock::now());
+  ASSERT_EQ(attempts.size(), 3u);
+  EXPECT_EQ(attempts[0].from + attempts[0].to, "ca") << "c is not placed: its pairs first";
+  EXPECT_EQ(attempts[1].from + attempts[1].to, "cb");
+  EXPECT_EQ(attempts[2].from + attempts[2].to, "ba") << "the refinement of a placed pair last";
+}
+
 // A merger that throws on a merge thread: the attempt says so and nothing stops.
 TEST(MergeSchedulerTest, AMergeThatThrowsIsAFailedAttempt) {
   class ThrowingMerger : public MapMerger {

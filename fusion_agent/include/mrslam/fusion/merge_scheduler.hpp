@@ -50,7 +50,8 @@ class MergeScheduler {
   /// Waits until the maps last offered have been considered; false on time-out.
   bool waitIdle(double timeout_s);
   /// Merges every due pair of `maps` now, `threads` pairs at a time (the calling thread one of
-  /// them; the background thread's step). The attempts come in pair order.
+  /// them; the background thread's step): pairs without a verified transform first, each group
+  /// in pair order, the attempts in that order.
   std::vector<MergeAttempt> runDue(const std::vector<RobotMap>& maps, Clock::time_point now);
   /// Attempts made since the last call.
   std::vector<MergeAttempt> takeAttempts();
