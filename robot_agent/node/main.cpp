@@ -110,9 +110,11 @@ int runRobot(const Options& options, const RobotConfig& config) {
   runner.setProgress(&progress);
   const auto summary = runner.run(mrslam::shutdownRequested());
   const auto counters = source->counters();
-  spdlog::info("{}: {} samples, {} scans, {} maps published, {} malformed records skipped",
-               config.robot_id, summary.samples, pipeline->counters().scans, summary.maps_published,
-               counters.malformed_records);
+  spdlog::info(
+      "{}: {} samples, {} scans, {} maps published, {} malformed records skipped, {} jumps of the "
+      "log's clock shortened",
+      config.robot_id, summary.samples, pipeline->counters().scans, summary.maps_published,
+      counters.malformed_records, summary.replay_gaps_shortened);
   if (ekf != nullptr) {
     logEkfSummary(config.robot_id, *ekf);
   }

@@ -115,6 +115,8 @@ MappingSettings loadMapping(const Config& section) {
 void loadPublish(const Config& section, RobotConfig& config) {
   RunnerSettings& runner = config.runner;
   runner.speed = section.getDouble("speed", runner.speed, {0.0, 1000.0});
+  runner.max_replay_gap_s =
+      section.getDouble("max_replay_gap_s", runner.max_replay_gap_s, {0.0, 86400.0});
   runner.map_period_s = section.getDouble("map_period_s", runner.map_period_s, {0.0, 3600.0});
   runner.status_period_s =
       section.getDouble("status_period_s", runner.status_period_s, {0.0, 3600.0});

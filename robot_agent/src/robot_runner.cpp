@@ -1,8 +1,15 @@
 #include "mrslam/robot/robot_runner.hpp"
 
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
 #include <thread>
 
 namespace mrslam::robot {
+
+namespace {
+constexpr std::uint64_t kGapsReported = 3;  // warnings for the first jumps; the rest are counted
+}  // namespace
 
 std::vector<SE2> decimateTrajectory(const std::vector<TrajectoryPoint>& trajectory,
                                     std::size_t max_points) {
@@ -60,6 +67,8 @@ RunSummary RobotRunner::run(const std::atomic<bool>& stop) {
   publishMap(true);
   publishStatus(RobotState::kFinished, summary.stopped_early ? "stopped" : "end of data");
   summary.maps_published = maps_published_;
+  summary.replay_gaps_shortened = gaps_shortened_;
+  summary.paced_log_s = paced_log_s_;
   return summary;
 }
 
@@ -70,10 +79,25 @@ void RobotRunner::pace(Stamp stamp) {
   if (!clock_started_) {
     clock_started_ = true;
     first_stamp_ = stamp;
+    latest_paced_stamp_ = stamp;
     wall_start_ = std::chrono::steady_clock::now();
     return;
   }
-  const double log_elapsed_s = secondsBetween(first_stamp_, stamp);
+  const double step_s = secondsBetween(latest_paced_stamp_, stamp);
+  if (step_s > settings_.max_replay_gap_s) {
+    skipped_log_s_ += step_s - settings_.max_replay_gap_s;
+    if (gaps_shortened_++ < kGapsReported) {
+      spdlog::warn(
+          "replay: the log's clock jumps {:.1f} s at {:.3f} s; replayed as {:.1f} s "
+          "(publish.max_replay_gap_s)",
+          step_s, stamp.seconds(), settings_.max_replay_gap_s);
+    }
+  }
+  if (step_s > 0.0) {
+    latest_paced_stamp_ = stamp;
+  }
+  const double log_elapsed_s = secondsBetween(first_stamp_, stamp) - skipped_log_s_;
+  paced_log_s_ = std::max(paced_log_s_, log_elapsed_s);
   if (log_elapsed_s <= 0.0) {
     return;  // a stamp from before the start (out of order): no waiting
   }

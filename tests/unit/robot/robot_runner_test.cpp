@@ -109,6 +109,31 @@ TEST(RobotRunnerTest, StopFlagEndsTheRunWithAFinalMap) {
   EXPECT_TRUE(output.maps.front().is_final);
 }
 
+TEST(RobotRunnerTest, APacedReplayShortensAJumpOfTheLogsClock) {
+  // Two scans 0.1 s apart, then one 10000 s later (as the csail log's stamps jump), then one
+  // 0.1 s after it, replayed at 1000 times real time with jumps capped at 0.2 s: the pacing
+  // follows 0.4 s of log time, not 10000.2 s.
+  std::deque<Sample> samples;
+  for (const double t : {100.0, 100.1, 10100.1, 10100.2}) {
+    samples.push_back(scanAt(t));
+  }
+  VectorSource source(samples);
+  RobotPipeline pipeline(MappingSettings{}, SensorMounting{},
+                         std::make_unique<OdometryEstimator>(DiffDriveParams{}, OdometryNoise{}));
+  RecordingOutput output;
+  RunnerSettings settings;
+  settings.speed = 1000.0;
+  settings.max_replay_gap_s = 0.2;
+  RobotRunner runner(settings, source, pipeline, output);
+  std::atomic<bool> stop{false};
+  const RunSummary summary = runner.run(stop);
+  EXPECT_EQ(summary.samples, 4u);
+  EXPECT_EQ(summary.replay_gaps_shortened, 1u);
+  EXPECT_NEAR(summary.paced_log_s, 0.4, 1e-6);
+  ASSERT_EQ(output.pose_stamps.size(), 4u);
+  EXPECT_EQ(output.pose_stamps[2], Stamp::fromSeconds(10100.1)) << "the stamps stay the log's";
+}
+
 TEST(DecimateTrajectoryTest, KeepsFirstAndLastAndSpreadsTheRest) {
   std::vector<TrajectoryPoint> trajectory;
   for (int i = 0; i < 101; ++i) {

@@ -50,8 +50,12 @@ class RobotOutput {
 };
 
 struct RunnerSettings {
-  double speed = 0.0;         ///< replay speed factor of the sample clock; 0: as fast as possible
-  double map_period_s = 1.0;  ///< sample-clock time between published maps
+  double speed = 0.0;  ///< replay speed factor of the sample clock; 0: as fast as possible
+  /// Longest step of the sample clock a paced replay waits for, s: a longer jump of a log's
+  /// stamps (the csail log's, written with 6 significant digits, jumps 10000 s at once) is
+  /// replayed as this long.
+  double max_replay_gap_s = 10.0;
+  double map_period_s = 1.0;             ///< sample-clock time between published maps
   double status_period_s = 1.0;          ///< sample-clock time between status reports
   std::size_t trajectory_points = 2000;  ///< most trajectory poses sent with a map
 };
@@ -59,7 +63,9 @@ struct RunnerSettings {
 struct RunSummary {
   std::uint64_t samples = 0;
   std::uint64_t maps_published = 0;
-  bool stopped_early = false;  ///< the stop flag ended the run before the source did
+  bool stopped_early = false;               ///< the stop flag ended the run before the source did
+  std::uint64_t replay_gaps_shortened = 0;  ///< steps of the log's clock beyond max_replay_gap_s
+  double paced_log_s = 0.0;  ///< log time a paced replay followed, the jumps shortened
 };
 
 class RobotRunner {
@@ -89,6 +95,10 @@ class RobotRunner {
   Stamp last_status_stamp_;
   bool clock_started_ = false;
   Stamp first_stamp_;
+  Stamp latest_paced_stamp_;    ///< the latest stamp paced so far
+  double skipped_log_s_ = 0.0;  ///< log time left out of the pacing (gaps shortened)
+  double paced_log_s_ = 0.0;    ///< the latest log time paced to
+  std::uint64_t gaps_shortened_ = 0;
   std::chrono::steady_clock::time_point wall_start_;
   ReplayProgress* progress_ = nullptr;
 };
