@@ -60,6 +60,13 @@ void loadMerge(const Config& section, FusionConfig& fusion) {
   merge.material_change = section.getDouble("material_change", merge.material_change, {0.0, 10.0});
   merge.refine_accepted = section.getBool("refine_accepted", merge.refine_accepted);
   merge.threads = static_cast<int>(section.getInt("threads", merge.threads, {1, 64}));
+  merge.confirmations =
+      static_cast<int>(section.getInt("confirmations", merge.confirmations, {1, 100}));
+  merge.confirm_distance_m =
+      section.getDouble("confirm_distance_m", merge.confirm_distance_m, {0.0, 100.0});
+  merge.confirm_angle_rad =
+      section.getDouble("confirm_angle_deg", merge.confirm_angle_rad * 180.0 / M_PI, {0.0, 180.0}) *
+      M_PI / 180.0;
   fusion.final_merge_timeout_s =
       section.getDouble("final_timeout_s", fusion.final_merge_timeout_s, {0.0, 3600.0});
 }

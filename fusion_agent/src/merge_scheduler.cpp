@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <string>
 
 namespace mrslam::fusion {
 
@@ -143,7 +145,11 @@ std::vector<MergeAttempt> MergeScheduler::runDue(const std::vector<RobotMap>& ma
       if (!isDue(state, pair, placed, now)) {
         continue;
       }
-      state = {now, pair.known_from, pair.known_to, true, pair.both_final};
+      state.last_attempt = now;
+      state.known_from = pair.known_from;
+      state.known_to = pair.known_to;
+      state.attempted = true;
+      state.final_merged = pair.both_final;
       (placed ? due_placed : due).emplace_back(from, to);
     }
   }
@@ -158,13 +164,50 @@ std::vector<MergeAttempt> MergeScheduler::runDue(const std::vector<RobotMap>& ma
   }
   std::vector<MergeAttempt> attempts(due.size());
   runOnThreads(due.size(), settings_.threads, [&](std::size_t k) {
-    attempts[k] = mergePair(*mergers[k], maps[due[k].first], maps[due[k].second]);
+    const RobotMap& from = maps[due[k].first];
+    const RobotMap& to = maps[due[k].second];
+    attempts[k] = mergePair(*mergers[k], from, to, pairs_.at({from.robot_id, to.robot_id}));
   });
   return attempts;
 }
 
-MergeAttempt MergeScheduler::mergePair(MapMerger& merger, const RobotMap& from,
-                                       const RobotMap& to) {
+namespace {
+
+bool agree(const SE2& a, const SE2& b, const MergeSchedulerSettings& settings) {
+  return (a.translation() - b.translation()).norm() <= settings.confirm_distance_m &&
+         std::abs(wrapAngle(a.theta() - b.theta())) <= settings.confirm_angle_rad;
+}
+
+}  // namespace
+
+bool MergeScheduler::confirmed(const PairwiseEstimate& estimate, PairState& state,
+                               std::string& note) const {
+  if (estimate.from_final_maps || settings_.confirmations <= 1) {
+    state.pending.reset();
+    return true;  // the final maps hold every scan: their merge is the one that counts
+  }
+  const std::optional<PairwiseEstimate> in_use = graph_.estimate(estimate.from, estimate.to);
+  if (in_use && agree(in_use->T_to_from, estimate.T_to_from, settings_)) {
+    state.pending.reset();
+    return true;  // it refines the estimate in use
+  }
+  const bool agrees_with_pending =
+      state.pending && agree(state.pending->T_to_from, estimate.T_to_from, settings_);
+  state.agreeing = agrees_with_pending ? state.agreeing + 1 : 1;
+  if (state.agreeing >= settings_.confirmations) {
+    state.pending.reset();
+    note = "; confirmed by the merges of earlier maps";
+    return true;
+  }
+  state.pending = estimate;
+  note = "; not used until " + std::to_string(settings_.confirmations - state.agreeing) +
+         " more merge(s) of grown maps agree" +
+         (in_use ? " (it disagrees with the estimate in use)" : "");
+  return false;
+}
+
+MergeAttempt MergeScheduler::mergePair(MapMerger& merger, const RobotMap& from, const RobotMap& to,
+                                       PairState& state) {
   MergeAttempt attempt;
   attempt.from = from.robot_id;
   attempt.to = to.robot_id;
@@ -191,10 +234,21 @@ MergeAttempt MergeScheduler::mergePair(MapMerger& merger, const RobotMap& from,
     estimate.entropy = attempt.result.entropy;
     estimate.method = attempt.result.method;
     estimate.from_final_maps = from.is_final && to.is_final;
-    const bool stored = graph_.addVerified(estimate);
-    spdlog::info("fusion: {} → {} merged by {} (V {:.3f}, {:.0f} ms){}", from.robot_id, to.robot_id,
-                 estimate.method, estimate.verification, attempt.time_ms,
-                 stored ? "" : "; a better estimate is kept");
+    std::string note;
+    const bool use = confirmed(estimate, state, note);
+    if (!use) {
+      attempt.result.reason = "held back" + note;  // accepted, but not placing a robot yet
+    }
+    const bool stored = use && graph_.addVerified(estimate);
+    if (use && !stored) {
+      note += "; a better estimate is kept";
+    }
+    spdlog::info(
+        "fusion: {} → {} merged by {} (V {:.3f}, {:.0f} ms): {}'s origin at ({:.3f} m, "
+        "{:.3f} m, {:.2f} deg) in {}'s frame{}",
+        from.robot_id, to.robot_id, estimate.method, estimate.verification, attempt.time_ms,
+        from.robot_id, estimate.T_to_from.x(), estimate.T_to_from.y(),
+        estimate.T_to_from.theta() * 180.0 / M_PI, to.robot_id, note);
   } else {
     spdlog::info("fusion: {} → {} not merged: {}", from.robot_id, to.robot_id,
                  attempt.result.reason);

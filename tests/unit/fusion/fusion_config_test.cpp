@@ -83,6 +83,23 @@ TEST(FusionConfigTest, MergeThreadsAreReadWithTwoByDefault) {
   EXPECT_EQ(loadFusionConfig(writeConfig("merge:\n  threads: 4\n")).merge.threads, 4);
 }
 
+TEST(FusionConfigTest, MergeConfirmationsAreReadWithTwoByDefault) {
+  const MergeSchedulerSettings defaults =
+      loadFusionConfig(writeConfig("merge:\n  method: none\n")).merge;
+  EXPECT_EQ(defaults.confirmations, 2);
+  EXPECT_DOUBLE_EQ(defaults.confirm_distance_m, 0.5);
+  EXPECT_NEAR(defaults.confirm_angle_rad, 3.0 * M_PI / 180.0, 1e-12);
+  const MergeSchedulerSettings set =
+      loadFusionConfig(
+          writeConfig(
+              "merge:\n  confirmations: 3\n  confirm_distance_m: 0.2\n  confirm_angle_deg: 1.5\n"))
+          .merge;
+  EXPECT_EQ(set.confirmations, 3);
+  EXPECT_DOUBLE_EQ(set.confirm_distance_m, 0.2);
+  EXPECT_NEAR(set.confirm_angle_rad, 1.5 * M_PI / 180.0, 1e-12);
+  EXPECT_THROW(loadFusionConfig(writeConfig("merge:\n  confirmations: 0\n")), std::exception);
+}
+
 TEST(FusionConfigTest, TheMergeMethodMakesItsMergerWithItsSettings) {
   const FusionConfig none = loadFusionConfig(writeConfig("merge:\n  method: none\n"));
   EXPECT_FALSE(none.make_merger);

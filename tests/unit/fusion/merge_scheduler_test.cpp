@@ -12,14 +12,16 @@ namespace {
 // A merger whose answer the test sets; it counts its calls (from any merge thread).
 class ScriptedMerger : public MapMerger {
  public:
-  ScriptedMerger(std::atomic<int>& calls, bool accept) : calls_(calls), accept_(accept) {}
+  /// `shift_cells`: the accepted transform's shift along x.
+  ScriptedMerger(std::atomic<int>& calls, bool accept, double shift_cells = 10.0)
+      : calls_(calls), accept_(accept), shift_cells_(shift_cells) {}
   MergeResult merge(const GridMap&, const GridMap&) override {
     ++calls_;
     MergeResult result;
     result.accepted = accept_;
     result.method = "scripted";
     result.verification = 0.9;
-    result.T_to_from.t_cells = Eigen::Vector2d(10.0, 0.0);
+    result.T_to_from.t_cells = Eigen::Vector2d(shift_cells_, 0.0);
     result.reason = accept_ ? "" : "no match";
     return result;
   }
@@ -28,6 +30,7 @@ class ScriptedMerger : public MapMerger {
  private:
   std::atomic<int>& calls_;
   bool accept_;
+  double shift_cells_;
 };
 
 // A merger that waits (up to 10 s) until `wanted` merges are running at once, and records the
@@ -79,6 +82,7 @@ TEST(MergeSchedulerTest, MergesNewPairsThenOnlyAfterTheIntervalAndMaterialChange
   MergeSchedulerSettings settings;
   settings.min_interval_s = 10.0;
   settings.material_change = 0.1;
+  settings.confirmations = 1;  // the first accepted merge is used at once
   MergeScheduler scheduler(
       settings, [&] { return std::make_unique<ScriptedMerger>(calls, true); }, graph);
   const auto t0 = MergeScheduler::Clock::now();
@@ -200,6 +204,72 @@ TEST(MergeSchedulerTest, PairsWithoutAVerifiedTransformAreMergedBeforeRefinement
   EXPECT_EQ(attempts[0].from + attempts[0].to, "ca") << "c is not placed: its pairs first";
   EXPECT_EQ(attempts[1].from + attempts[1].to, "cb");
   EXPECT_EQ(attempts[2].from + attempts[2].to, "ba") << "the refinement of a placed pair last";
+}
+
+/// Maps of a and b with `known` cells each, final or not.
+std::vector<RobotMap> pairOfMaps(int known, bool is_final) {
+  std::vector<RobotMap> maps = {mapOf("a", known), mapOf("b", known)};
+  maps[0].is_final = maps[1].is_final = is_final;
+  return maps;
+}
+
+TEST(MergeSchedulerTest, AMergeOfGrowingMapsIsUsedOnceASecondOneAgrees) {
+  TeamGraph graph;
+  std::atomic<int> calls{0};
+  double shift_cells = 10.0;  // 1 m: the merger's answer, changed between rounds
+  MergeSchedulerSettings settings;
+  settings.min_interval_s = 0.0;
+  MergeScheduler scheduler(
+      settings, [&] { return std::make_unique<ScriptedMerger>(calls, true, shift_cells); }, graph);
+  const auto t0 = MergeScheduler::Clock::now();
+  const auto first = scheduler.runDue(pairOfMaps(100, false), t0);
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_TRUE(first[0].result.accepted);
+  EXPECT_EQ(first[0].result.reason,
+            "held back; not used until 1 more merge(s) of grown maps agree");
+  EXPECT_FALSE(graph.estimate("b", "a").has_value()) << "one accepted merge is not yet used";
+  shift_cells = 40.0;  // the grown maps put b 3 m away: no agreement
+  ASSERT_EQ(scheduler.runDue(pairOfMaps(200, false), t0).size(), 1u);
+  EXPECT_FALSE(graph.estimate("b", "a").has_value()) << "two merges that disagree";
+  shift_cells = 42.0;  // 20 cm from the last: it confirms that one
+  ASSERT_EQ(scheduler.runDue(pairOfMaps(300, false), t0).size(), 1u);
+  ASSERT_TRUE(graph.estimate("b", "a").has_value());
+  EXPECT_NEAR(graph.estimate("b", "a")->T_to_from.x(), 4.2, 1e-9) << "the latest is used";
+  shift_cells = 43.0;  // it agrees with the estimate in use: a refinement, used at once
+  ASSERT_EQ(scheduler.runDue(pairOfMaps(400, false), t0).size(), 1u);
+  EXPECT_NEAR(graph.estimate("b", "a")->T_to_from.x(), 4.3, 1e-9)
+      << "the refinement is used (V as high)";
+  EXPECT_EQ(calls, 4);
+}
+
+TEST(MergeSchedulerTest, AMergeOfBothFinalMapsIsUsedAtOnce) {
+  TeamGraph graph;
+  std::atomic<int> calls{0};
+  MergeScheduler scheduler(
+      MergeSchedulerSettings{}, [&] { return std::make_unique<ScriptedMerger>(calls, true); },
+      graph);
+  ASSERT_EQ(scheduler.runDue(pairOfMaps(100, true), MergeScheduler::Clock::now()).size(), 1u);
+  ASSERT_TRUE(graph.estimate("b", "a").has_value());
+  EXPECT_TRUE(graph.estimate("b", "a")->from_final_maps);
+}
+
+TEST(MergeSchedulerTest, AWrongEarlyMergeIsNeverUsedWhenTheGrownMapsRefuseThePair) {
+  TeamGraph graph;
+  std::atomic<int> calls{0};
+  bool accept = true;
+  MergeSchedulerSettings settings;
+  settings.min_interval_s = 0.0;
+  MergeScheduler scheduler(
+      settings, [&] { return std::make_unique<ScriptedMerger>(calls, accept); }, graph);
+  const auto t0 = MergeScheduler::Clock::now();
+  const auto first = scheduler.runDue(pairOfMaps(100, false), t0);
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_TRUE(first[0].result.accepted) << "the attempt still says what the merger found";
+  accept = false;
+  scheduler.runDue(pairOfMaps(200, false), t0);
+  scheduler.runDue(pairOfMaps(300, true), t0);
+  EXPECT_FALSE(graph.estimate("b", "a").has_value());
+  EXPECT_EQ(calls, 3);
 }
 
 // A merger that throws on a merge thread: the attempt says so and nothing stops.

@@ -1,13 +1,17 @@
 #pragma once
 // Runs pairwise map merges in the background: rate-limited, re-run when a map has changed
 // materially, verified results into the TeamGraph (a verified transform is kept and refined,
-// never thrown away by a later refusal).
+// never thrown away by a later refusal). A merge of maps still growing places a robot only once
+// a merge of grown maps agrees with it (`confirmations`): early, small maps can fit a wrong place
+// well. A merge of both robots' final maps is used at once.
 
+#include <cmath>
 #include <condition_variable>
 #include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -22,6 +26,12 @@ struct MergeSchedulerSettings {
   double material_change = 0.1;  ///< re-merge a pair when a map's known cells grew by this fraction
   bool refine_accepted = true;   ///< keep re-merging placed pairs as maps grow (refinement)
   int threads = 2;               ///< due pairs merged at once, each on its own thread
+  /// Accepted merges of a pair, each on maps grown since the one before, that must agree before
+  /// the pair places a robot (1: the first at once). A merge of both final maps counts alone, as
+  /// does one that agrees with the pair's estimate in use.
+  int confirmations = 2;
+  double confirm_distance_m = 0.5;                ///< two merges agree: origins this close ...
+  double confirm_angle_rad = 3.0 * M_PI / 180.0;  ///< ... and turned less than this
 };
 
 /// One merge that was run, for the transforms topic and the logs.
@@ -64,6 +74,9 @@ class MergeScheduler {
     std::size_t known_to = 0;
     bool attempted = false;
     bool final_merged = false;  ///< the last attempt had both robots' final maps
+    /// The last accepted merge not yet in use, and how many agreeing ones it closes.
+    std::optional<PairwiseEstimate> pending;
+    int agreeing = 0;
   };
   /// What isDue needs of the two maps of a pair.
   struct PairMaps {
@@ -74,8 +87,13 @@ class MergeScheduler {
 
   bool isDue(const PairState& state, const PairMaps& maps, bool placed,
              Clock::time_point now) const;
-  /// One merge (on any thread): the attempt, and a verified result into the graph.
-  MergeAttempt mergePair(MapMerger& merger, const RobotMap& from, const RobotMap& to);
+  /// One merge (on any thread; `state` is this pair's alone): the attempt, and a verified result
+  /// into the graph once confirmed.
+  MergeAttempt mergePair(MapMerger& merger, const RobotMap& from, const RobotMap& to,
+                         PairState& state);
+  /// Whether `estimate` (just accepted) is to be used now; else it waits in `state.pending`.
+  /// Appends to `note` why it waits or what confirmed it.
+  bool confirmed(const PairwiseEstimate& estimate, PairState& state, std::string& note) const;
   void loop();
 
   MergeSchedulerSettings settings_;
