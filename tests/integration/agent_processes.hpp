@@ -8,7 +8,6 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,6 +17,12 @@
 #include "test_domain.hpp"
 
 namespace mrslam::test {
+
+/// The whole text of a file ("" when it cannot be read).
+inline std::string fileText(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
 
 /// A DDS domain of this test process alone (tests run in parallel processes).
 inline int privateDomain() {
@@ -54,8 +59,7 @@ inline CommandRun runToEnd(const std::string& program, const std::vector<std::st
   auto process = startAgent(program, arguments, log_path);
   CommandRun run;
   run.exit_code = finish(*process, timeout_s);
-  std::ifstream in(log_path);
-  run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  run.output = fileText(log_path);
   return run;
 }
 
@@ -71,10 +75,7 @@ inline bool waitForLog(const std::filesystem::path& path, const std::string& tex
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                             std::chrono::duration<double>(timeout_s));
   while (true) {
-    std::ifstream file(path);
-    std::stringstream content;
-    content << file.rdbuf();
-    const std::string log = content.str();
+    const std::string log = fileText(path);
     int found = 0;
     for (std::size_t at = log.find(text); at != std::string::npos; at = log.find(text, at + 1)) {
       ++found;

@@ -15,13 +15,6 @@
 namespace mrslam::test {
 namespace {
 
-std::string contentOf(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
 std::size_t linesStartingWith(const std::string& text, const std::string& prefix) {
   std::size_t count = 0;
   std::istringstream lines(text);
@@ -61,7 +54,7 @@ TEST(DevicesAgentTest, TheAgentReadsEmulatedDevicesAndStopsCleanlyOnCtrlC) {
                           (out / "agent.log").string());
   // Until the agent has recorded some of each kind (bounded), then Ctrl-C.
   for (int i = 0; i < 400; ++i) {
-    const std::string recorded = contentOf(out / "recorded.log");
+    const std::string recorded = fileText(out / "recorded.log");
     if (linesStartingWith(recorded, "LASER") >= 10 && linesStartingWith(recorded, "IMU") >= 10) {
       break;
     }
@@ -70,10 +63,10 @@ TEST(DevicesAgentTest, TheAgentReadsEmulatedDevicesAndStopsCleanlyOnCtrlC) {
   agent->signal(SIGINT);
   ASSERT_EQ(finish(*agent, 30.0), 0) << logOf(*agent);
 
-  const std::string recorded = contentOf(out / "recorded.log");
+  const std::string recorded = fileText(out / "recorded.log");
   EXPECT_GE(linesStartingWith(recorded, "LASER"), 10u);
   EXPECT_GE(linesStartingWith(recorded, "IMU"), 10u);
-  const std::string log = contentOf(out / "agent.log");
+  const std::string log = fileText(out / "agent.log");
   EXPECT_NE(log.find("laser: reading its device"), std::string::npos) << log;
   EXPECT_NE(log.find("imu: reading its device"), std::string::npos) << log;
   const GridMap map = loadMapYaml((out / "map" / "coroware1.yaml").string());

@@ -8,20 +8,12 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
-#include <sstream>
 
 #include "agent_processes.hpp"
 #include "mrslam/common/map_io.hpp"
 
 namespace mrslam::test {
 namespace {
-
-std::string fileText(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
 
 // A simulated robot that keeps its final map on offer: it waits for more fusion agents than run.
 std::string lingeringRobotConfig(const std::filesystem::path& folder, int index) {

@@ -7,19 +7,11 @@
 
 #include <fstream>
 #include <regex>
-#include <sstream>
 
 #include "agent_processes.hpp"
 
 namespace mrslam::test {
 namespace {
-
-std::string fileText(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
 
 /// Simulated robot 1 with a short wait for the fusion agents at the end.
 std::string robotConfig(const std::filesystem::path& folder) {

@@ -9,7 +9,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
-#include <sstream>
 
 #include "agent_processes.hpp"
 
@@ -22,13 +21,6 @@ int run(const std::vector<std::string>& argv, const std::filesystem::path& log) 
   tools::ChildProcess process(argv, log.string());
   const auto code = process.waitFor(20.0);
   return code ? *code : -1;
-}
-
-std::string fileText(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
 }
 
 // A config of `source` with UDP only and absolute profile paths (it lives in a scratch folder).

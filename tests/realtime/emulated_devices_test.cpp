@@ -35,11 +35,6 @@ void associate(const std::vector<robot::StampedPose>& estimate,
   }
 }
 
-std::string fileText(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-}
-
 TEST(EmulatedDevicesTest, RobotAgentsOnEmulatedDevicesMapAsOnTheirSimulator) {
   const auto out = scratchFolder("emulated_team");
   const std::string team_file = (out / "team.yaml").string();
