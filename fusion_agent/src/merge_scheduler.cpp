@@ -180,30 +180,34 @@ bool agree(const SE2& a, const SE2& b, const MergeSchedulerSettings& settings) {
 
 }  // namespace
 
-bool MergeScheduler::confirmed(const PairwiseEstimate& estimate, PairState& state,
-                               std::string& note) const {
+MergeScheduler::Confirmation MergeScheduler::confirm(const PairwiseEstimate& estimate,
+                                                     PairState& state) const {
   if (estimate.from_final_maps || settings_.confirmations <= 1) {
     state.pending.reset();
-    return true;  // the final maps hold every scan: their merge is the one that counts
+    return {true, std::nullopt, ""};  // the final maps hold every scan: their merge counts alone
   }
   const std::optional<PairwiseEstimate> in_use = graph_.estimate(estimate.from, estimate.to);
   if (in_use && agree(in_use->T_to_from, estimate.T_to_from, settings_)) {
     state.pending.reset();
-    return true;  // it refines the estimate in use
+    return {true, std::nullopt, ""};  // it refines the estimate in use
   }
   const bool agrees_with_pending =
       state.pending && agree(state.pending->T_to_from, estimate.T_to_from, settings_);
   state.agreeing = agrees_with_pending ? state.agreeing + 1 : 1;
   if (state.agreeing >= settings_.confirmations) {
     state.pending.reset();
-    note = "; confirmed by the merges of earlier maps";
-    return true;
+    // Merges of grown maps that agree with each other and not with the estimate in use outweigh
+    // it, whatever its V: V is not comparable across overlaps of different sizes.
+    const bool replaces = in_use && !in_use->configured;
+    return {true, replaces ? in_use : std::nullopt,
+            replaces ? "; confirmed by the merges of earlier maps, it replaces the estimate in use"
+                     : "; confirmed by the merges of earlier maps"};
   }
   state.pending = estimate;
-  note = "; not used until " + std::to_string(settings_.confirmations - state.agreeing) +
-         " more merge(s) of grown maps agree" +
-         (in_use ? " (it disagrees with the estimate in use)" : "");
-  return false;
+  return {false, std::nullopt,
+          "; not used until " + std::to_string(settings_.confirmations - state.agreeing) +
+              " more merge(s) of grown maps agree" +
+              (in_use ? " (it disagrees with the estimate in use)" : "")};
 }
 
 MergeAttempt MergeScheduler::mergePair(MapMerger& merger, const RobotMap& from, const RobotMap& to,
@@ -234,10 +238,14 @@ MergeAttempt MergeScheduler::mergePair(MapMerger& merger, const RobotMap& from, 
     estimate.entropy = attempt.result.entropy;
     estimate.method = attempt.result.method;
     estimate.from_final_maps = from.is_final && to.is_final;
-    std::string note;
-    const bool use = confirmed(estimate, state, note);
+    const Confirmation confirmation = confirm(estimate, state);
+    std::string note = confirmation.note;
+    const bool use = confirmation.use;
     if (!use) {
       attempt.result.reason = "held back" + note;  // accepted, but not placing a robot yet
+    }
+    if (confirmation.replaced) {
+      graph_.withdraw(estimate.from, estimate.to, confirmation.replaced->T_to_from);
     }
     const bool stored = use && graph_.addVerified(estimate);
     if (use && !stored) {

@@ -242,6 +242,34 @@ TEST(MergeSchedulerTest, AMergeOfGrowingMapsIsUsedOnceASecondOneAgrees) {
   EXPECT_EQ(calls, 4);
 }
 
+TEST(MergeSchedulerTest, TwoAgreeingMergesOfGrownMapsReplaceADisagreeingEstimateInUse) {
+  TeamGraph graph;
+  PairwiseEstimate early;  // in use, with a V the later merges do not reach
+  early.from = "b";
+  early.to = "a";
+  early.T_to_from = SE2(-3.0, 0.5, 3.1);
+  early.verification = 0.997;
+  early.method = "scripted";
+  ASSERT_TRUE(graph.addVerified(early));
+  std::atomic<int> calls{0};
+  MergeSchedulerSettings settings;
+  settings.min_interval_s = 0.0;
+  MergeScheduler scheduler(
+      settings, [&] { return std::make_unique<ScriptedMerger>(calls, true); }, graph);
+  const auto t0 = MergeScheduler::Clock::now();
+  const auto first = scheduler.runDue(pairOfMaps(100, false), t0);
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_EQ(first[0].result.reason,
+            "held back; not used until 1 more merge(s) of grown maps agree (it disagrees with the "
+            "estimate in use)");
+  EXPECT_NEAR(graph.estimate("b", "a")->T_to_from.x(), -3.0, 1e-9);
+  ASSERT_EQ(scheduler.runDue(pairOfMaps(200, false), t0).size(), 1u);
+  const std::optional<PairwiseEstimate> now = graph.estimate("b", "a");
+  ASSERT_TRUE(now.has_value());
+  EXPECT_NEAR(now->T_to_from.x(), 1.0, 1e-9) << "the two agreeing merges (V 0.9) replaced it";
+  EXPECT_NEAR(now->verification, 0.9, 1e-12);
+}
+
 TEST(MergeSchedulerTest, AMergeOfBothFinalMapsIsUsedAtOnce) {
   TeamGraph graph;
   std::atomic<int> calls{0};

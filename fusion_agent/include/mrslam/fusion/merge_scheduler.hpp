@@ -12,6 +12,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -91,9 +92,13 @@ class MergeScheduler {
   /// into the graph once confirmed.
   MergeAttempt mergePair(MapMerger& merger, const RobotMap& from, const RobotMap& to,
                          PairState& state);
-  /// Whether `estimate` (just accepted) is to be used now; else it waits in `state.pending`.
-  /// Appends to `note` why it waits or what confirmed it.
-  bool confirmed(const PairwiseEstimate& estimate, PairState& state, std::string& note) const;
+  /// What to do with a merge just accepted.
+  struct Confirmation {
+    bool use = false;  ///< into the graph now (else it waits in the pair's `pending`)
+    std::optional<PairwiseEstimate> replaced;  ///< the estimate in use it outweighs, withdrawn
+    std::string note;                          ///< why it waits, or what confirmed it
+  };
+  Confirmation confirm(const PairwiseEstimate& estimate, PairState& state) const;
   void loop();
 
   MergeSchedulerSettings settings_;
