@@ -18,6 +18,7 @@
 #include "mrslam/fusion/merge/chain_merger.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
 #include "mrslam/fusion/merge/merger_registry.hpp"
+#include "mrslam/fusion/merge/overlap_score.hpp"
 
 namespace mrslam::test {
 namespace {
@@ -95,6 +96,90 @@ TEST(MergeCommandTest, JsonAffineMapsPixelsOfOneFileOntoTheOther) {
   }
   // The turn of file 1's pixels onto file 0's: +70° in the grid is −70° in the pictures.
   EXPECT_NEAR(std::atan2(affine[1][0], affine[0][0]), -70.0 * kPi / 180.0, 1.0 * kPi / 180.0);
+}
+
+/// The six numbers of --judge: the image affine of crop 1's pixels onto crop 0's for T_0_1.
+std::vector<std::string> judgeArguments(const fusion::GridTransform& T_0_1, const GridMap& map_1,
+                                        const GridMap& map_0) {
+  const fusion::ImageAffine affine =
+      fusion::gridTransformToImageAffine(T_0_1, map_1.geometry.height, map_0.geometry.height);
+  std::vector<std::string> arguments{"--judge"};
+  for (int row = 0; row < 2; ++row) {
+    for (int column = 0; column < 3; ++column) {
+      std::ostringstream number;
+      number.precision(17);
+      number << affine(row, column);
+      arguments.push_back(number.str());
+    }
+  }
+  return arguments;
+}
+
+TEST(MergeCommandTest, JudgeGivesTheAcceptancesVerdictOnAGivenAffine) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-intel.txt");
+  const auto folder = scratchFolder("judge");
+  const GridMap intel = loadMapFile(sharedDataPath("maps/carpin-intel.txt"));
+  const fusion::Crop crop_0 = fusion::cutCrop(intel, specOf(150, 200, 320, 0.35, 10));
+  const fusion::Crop crop_1 = fusion::cutCrop(intel, specOf(220, 240, 320, -0.87, 30));
+  saveMapYaml(crop_0.map, (folder / "zero.yaml").string());
+  saveMapYaml(crop_1.map, (folder / "one.yaml").string());
+  const std::vector<std::string> maps{(folder / "zero.yaml").string(),
+                                      (folder / "one.yaml").string()};
+  const fusion::GridTransform T_0_1 =
+      fusion::compose(crop_0.T_crop_source, crop_1.T_crop_source.inverse());
+  const auto judged = [&](const fusion::GridTransform& T_given) {
+    std::vector<std::string> arguments = maps;
+    for (const std::string& argument : judgeArguments(T_given, crop_1.map, crop_0.map)) {
+      arguments.push_back(argument);
+    }
+    arguments.push_back("--json");
+    const CommandRun run = runMerge(arguments, folder);
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    const nlohmann::json pairs = lastJsonLine(run.output)["pairs"];
+    EXPECT_EQ(pairs.size(), 1u) << pairs.dump();
+    return pairs.at(0);
+  };
+  // The truth, 3 cells and 0.5° off: accepted, and placed back within the tolerance.
+  fusion::GridTransform near_truth = T_0_1;
+  near_truth.theta_rad += 0.5 * kPi / 180.0;
+  near_truth.t_cells += Eigen::Vector2d(3.0, 0.0);
+  const nlohmann::json right = judged(near_truth);
+  ASSERT_TRUE(right["accepted"].get<bool>()) << right.dump();
+  EXPECT_EQ(right["method"], "seed/given");
+  const auto affine = right["affine"].get<std::vector<std::vector<double>>>();
+  fusion::ImageAffine found;
+  found << affine[0][0], affine[0][1], affine[0][2], affine[1][0], affine[1][1], affine[1][2];
+  const fusion::GridTransform error = fusion::compose(
+      T_0_1.inverse(), fusion::imageAffineToGridTransform(found, crop_1.map.geometry.height,
+                                                          crop_0.map.geometry.height));
+  EXPECT_LT(error.t_cells.norm(), fusion::kSuccessDistanceCells) << right.dump();
+  EXPECT_LT(std::abs(error.theta_rad), 1.0 * kPi / 180.0) << right.dump();
+  // The same maps a quarter turn off: refused, and the reason says why.
+  fusion::GridTransform turned = T_0_1;
+  turned.theta_rad += kPi / 2.0;
+  const nlohmann::json wrong = judged(turned);
+  EXPECT_FALSE(wrong["accepted"].get<bool>()) << wrong.dump();
+  EXPECT_FALSE(wrong["reason"].get<std::string>().empty()) << wrong.dump();
+  // Without --json: the verdict and how far the judged transform lies from the given one.
+  std::vector<std::string> arguments = maps;
+  for (const std::string& argument : judgeArguments(near_truth, crop_1.map, crop_0.map)) {
+    arguments.push_back(argument);
+  }
+  arguments.insert(arguments.end(), {"--out", (folder / "judged.png").string()});
+  const CommandRun summary = runMerge(arguments, folder);
+  ASSERT_EQ(summary.exit_code, 0) << summary.output;
+  EXPECT_THAT(summary.output, ::testing::HasSubstr("accepted by seed/given"));
+  EXPECT_THAT(summary.output, ::testing::HasSubstr("from the given transform"));
+}
+
+TEST(MergeCommandTest, JudgeTakesExactlyTwoMaps) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
+  const auto folder = scratchFolder("judge_three");
+  const std::string map = sharedDataPath("maps/carpin-robot0_cast.txt");
+  const CommandRun run =
+      runMerge({map, map, map, "--judge", "1", "0", "0", "0", "1", "0", "--json"}, folder);
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_THAT(run.output, ::testing::HasSubstr("--judge takes exactly two maps"));
 }
 
 TEST(MergeCommandTest, WritesTheMergedPictureAndASummaryWithoutJson) {

@@ -12,6 +12,12 @@
 // picture of the merged maps (one colour per map) is written to --out (default merged.png) and a
 // summary printed; with --json the picture is written only when --out is given. Exit code 1 with a
 // one-line reason when an input cannot be read.
+//
+// --judge A B C D E F (two maps only): no search; the affine of map 1 into map 0 (as --json
+// prints it) is judged by the acceptance every merger ends with: the seed pipeline's block 9 with
+// the config's `seed:` settings (the affine placed by its ±δ translation search first), then the
+// wall alignment and its turn check. A chain's rival checks are not run. It says why a pair is
+// refused at a place one believes right (from another method, a rendezvous, a survey).
 
 #include <CLI/CLI.hpp>
 #include <chrono>
@@ -30,6 +36,8 @@
 #include "mrslam/fusion/merge/merge_cases.hpp"
 #include "mrslam/fusion/merge/merger_registry.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
+#include "mrslam/fusion/merge/seed_merger.hpp"
+#include "mrslam/fusion/merge/wall_alignment.hpp"
 
 namespace {
 
@@ -46,6 +54,7 @@ struct MergeOptions {
   bool json = false;
   std::string out;
   double resolution_m = mrslam::kDefaultMapResolution;
+  std::vector<double> judge;  ///< (a, b, c, d, e, f): the image affine of map 1 into map 0
 };
 
 struct PairResult {
@@ -54,6 +63,7 @@ struct PairResult {
   MergeResult result;
   double time_ms = 0.0;
   mrslam::fusion::OverlapScore score;  ///< V and H of result.T_to_from by the tools' scorer
+  std::optional<GridTransform> given;  ///< --judge: the transform judged, before block 8
 };
 
 std::vector<GridMap> loadMaps(const MergeOptions& options) {
@@ -74,7 +84,7 @@ std::vector<PairResult> mergePairs(const std::vector<GridMap>& maps,
   std::vector<PairResult> pairs;
   for (int to = 0; to < static_cast<int>(maps.size()); ++to) {
     for (int from = to + 1; from < static_cast<int>(maps.size()); ++from) {
-      PairResult pair{from, to, {}, 0.0, {}};
+      PairResult pair{from, to, {}, 0.0, {}, std::nullopt};
       const auto start = std::chrono::steady_clock::now();
       pair.result =
           merger.merge(maps[static_cast<std::size_t>(from)], maps[static_cast<std::size_t>(to)]);
@@ -88,6 +98,26 @@ std::vector<PairResult> mergePairs(const std::vector<GridMap>& maps,
     }
   }
   return pairs;
+}
+
+/// --judge: the given affine of map 1 into map 0, judged without a search.
+PairResult judgeGiven(const std::vector<GridMap>& maps, const std::vector<double>& values,
+                      mrslam::fusion::SeedMerger& judge) {
+  mrslam::fusion::ImageAffine affine;
+  affine << values[0], values[1], values[2], values[3], values[4], values[5];
+  const GridMap& from = maps[1];
+  const GridMap& to = maps[0];
+  const GridTransform given =
+      mrslam::fusion::imageAffineToGridTransform(affine, from.geometry.height, to.geometry.height);
+  PairResult pair{1, 0, {}, 0.0, {}, given};
+  const auto start = std::chrono::steady_clock::now();
+  pair.result = judge.judgeHypotheses(from, to, {given});
+  mrslam::fusion::alignAccepted(from, to, judge.settings().wall_alignment,
+                                judge.settings().similarity, pair.result);
+  pair.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  pair.score = mrslam::fusion::scoreOverlap(from, to, pair.result.T_to_from);
+  return pair;
 }
 
 nlohmann::ordered_json toJson(const std::vector<PairResult>& pairs,
@@ -232,25 +262,42 @@ void printSummary(const std::vector<PairResult>& pairs, const MergeOptions& opti
       std::cout << "refused by " << r.method << " (" << r.reason << ")";
     }
     std::cout << ", V " << pair.score.verification() << ", H " << pair.score.entropy_bits
-              << " bit/cell, " << pair.time_ms << " ms\n";
+              << " bit/cell, " << pair.time_ms << " ms";
+    if (pair.given) {
+      const GridTransform moved = mrslam::fusion::compose(pair.given->inverse(), r.T_to_from);
+      std::cout << "; judged " << moved.t_cells.norm() << " cells and "
+                << std::abs(moved.theta_rad) * 180.0 / kPi << " deg from the given transform";
+    }
+    std::cout << '\n';
   }
 }
 
 int run(const MergeOptions& options) {
   std::vector<GridMap> maps;
   std::unique_ptr<mrslam::fusion::MapMerger> merger;
+  std::unique_ptr<mrslam::fusion::SeedMerger> judge;
   try {
     maps = loadMaps(options);
+    if (!options.judge.empty() && maps.size() != 2) {
+      throw std::invalid_argument(
+          "--judge takes exactly two maps (the affine of map 1 into map 0)");
+    }
     const mrslam::Config config = options.config.empty()
                                       ? mrslam::Config::loadString("", "<defaults>")
                                       : mrslam::Config::loadFile(options.config);
     mrslam::fusion::checkMergerConfig(config);
     merger = mrslam::fusion::makeMergerFrom(options.method, config);
+    if (!options.judge.empty()) {
+      judge = std::make_unique<mrslam::fusion::SeedMerger>(
+          mrslam::fusion::loadSeedMergerSettings(config.section("seed")));
+    }
   } catch (const std::exception& error) {  // MapIoError, ConfigError, unknown method
     std::cerr << "mrslam_merge: " << error.what() << '\n';
     return 1;
   }
-  const std::vector<PairResult> pairs = mergePairs(maps, *merger);
+  const std::vector<PairResult> pairs =
+      judge ? std::vector<PairResult>{judgeGiven(maps, options.judge, *judge)}
+            : mergePairs(maps, *merger);
   const std::string out = options.out.empty() && !options.json ? "merged.png" : options.out;
   const std::vector<std::optional<GridTransform>> T_0_k = placeMaps(pairs, maps.size());
   if (!out.empty() && !writeMergedPicture(maps, T_0_k, out)) {
@@ -294,6 +341,10 @@ int main(int argc, char** argv) {
   app.add_option("--resolution", options.resolution_m, "metres per cell of pictures and .txt")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app.add_option("--judge", options.judge,
+                 "judge this affine of map 1 into map 0 (A B C D E F, as --json prints it) "
+                 "without a search: the acceptance's verdict and reason")
+      ->expected(6);
   app.set_version_flag("--version", mrslam::versionLine("merge"));
   CLI11_PARSE(app, argc, argv);
   mrslam::retainHeapForReuse();  // each merge reuses the last one's memory
