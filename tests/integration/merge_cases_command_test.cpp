@@ -224,6 +224,8 @@ TEST(MergeCasesCommandTest, DetailsCarryTheCropsToCutACaseAgain) {
     const nlohmann::json& crop_b = detail["crop_b"];
     const bool positive = detail.contains("overlap");
     EXPECT_EQ(positive, crop_a["map"] == crop_b["map"]) << detail.dump();
+    // The merger (or chain step) that gave the result.
+    EXPECT_EQ(detail["method"].get<std::string>().rfind("feature", 0), 0u) << detail.dump();
     const fusion::MergeCase again = fusion::makeCase(sourceOf(crop_a), cropSpecOf(crop_a),
                                                      sourceOf(crop_b), cropSpecOf(crop_b));
     EXPECT_EQ(again.positive, positive);

@@ -158,6 +158,7 @@ void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger, M
   nlohmann::json detail = {
       {"case", merge_case.id},
       {"accepted", result.accepted},
+      {"method", result.method},
       {"merger_verification", result.verification},
       {"verification",
        mrslam::fusion::scoreOverlap(merge_case.a, merge_case.b, result.T_to_from).verification()},
