@@ -244,10 +244,10 @@ MergeAttempt MergeScheduler::mergePair(MapMerger& merger, const RobotMap& from, 
     if (!use) {
       attempt.result.reason = "held back" + note;  // accepted, but not placing a robot yet
     }
-    if (confirmation.replaced) {
-      graph_.withdraw(estimate.from, estimate.to, confirmation.replaced->T_to_from);
-    }
-    const bool stored = use && graph_.addVerified(estimate);
+    const bool stored =
+        use &&
+        (confirmation.replaced ? graph_.replaceVerified(estimate, confirmation.replaced->T_to_from)
+                               : graph_.addVerified(estimate));
     if (use && !stored) {
       note += "; a better estimate is kept";
     }

@@ -151,7 +151,10 @@ void TeamGraph::addConfigured(const std::string& from, const std::string& to,
 
 bool TeamGraph::addVerified(const PairwiseEstimate& estimate) {
   std::lock_guard<std::mutex> lock(mutex_);
-  const PairKey key = keyOf(estimate.from, estimate.to);
+  return storeUnlessBetterHeld(keyOf(estimate.from, estimate.to), estimate);
+}
+
+bool TeamGraph::storeUnlessBetterHeld(const PairKey& key, const PairwiseEstimate& estimate) {
   const auto found = edges_.find(key);
   if (found != edges_.end()) {
     const PairwiseEstimate& held = found->second;
@@ -167,22 +170,39 @@ bool TeamGraph::addVerified(const PairwiseEstimate& estimate) {
   return true;
 }
 
-bool TeamGraph::withdraw(const std::string& from, const std::string& to, const SE2& T_to_from) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  const PairKey key = keyOf(from, to);
+std::map<TeamGraph::PairKey, PairwiseEstimate>::iterator TeamGraph::heldEstimate(
+    const PairKey& key, const std::string& from, const SE2& T_to_from) {
   const auto found = edges_.find(key);
   if (found == edges_.end() || found->second.configured) {
-    return false;
+    return edges_.end();
   }
   const SE2 held =
       found->second.from == from ? found->second.T_to_from : found->second.T_to_from.inverse();
   constexpr double kSame = 1e-9;  // the very estimate given, not merely a close one
   const bool same = (held.translation() - T_to_from.translation()).norm() < kSame &&
                     std::abs(wrapAngle(held.theta() - T_to_from.theta())) < kSame;
-  if (same) {
-    edges_.erase(found);
+  return same ? found : edges_.end();
+}
+
+bool TeamGraph::withdraw(const std::string& from, const std::string& to, const SE2& T_to_from) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto held = heldEstimate(keyOf(from, to), from, T_to_from);
+  if (held == edges_.end()) {
+    return false;
   }
-  return same;
+  edges_.erase(held);
+  return true;
+}
+
+bool TeamGraph::replaceVerified(const PairwiseEstimate& estimate, const SE2& T_to_from_replaced) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const PairKey key = keyOf(estimate.from, estimate.to);
+  const auto held = heldEstimate(key, estimate.from, T_to_from_replaced);
+  if (held == edges_.end()) {
+    return storeUnlessBetterHeld(key, estimate);
+  }
+  held->second = key.first == estimate.from ? estimate : inverted(estimate);
+  return true;
 }
 
 std::optional<PairwiseEstimate> TeamGraph::estimate(const std::string& from,

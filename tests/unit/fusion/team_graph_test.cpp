@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <thread>
+
 namespace mrslam::fusion {
 namespace {
 
@@ -82,6 +85,51 @@ TEST(TeamGraphTest, WithdrawsOnlyTheEstimateGivenAndNeverAConfiguredOne) {
   graph.addConfigured("c", "a", SE2(0, 3, 0));
   EXPECT_FALSE(graph.withdraw("c", "a", SE2(0, 3, 0)));
   EXPECT_TRUE(graph.place("a", {"c"})[0].placed);
+}
+
+TEST(TeamGraphTest, ReplacesTheEstimateNamedWhateverItsVAndOtherwiseKeepsTheBetter) {
+  TeamGraph graph;
+  const SE2 T_early(1.0, 2.0, 0.4);
+  ASSERT_TRUE(graph.addVerified(estimateOf("b", "a", T_early, 0.99)));
+  // Named the other way round, the held estimate is still the one replaced, at a lower V.
+  EXPECT_TRUE(graph.replaceVerified(estimateOf("a", "b", SE2(-3, 0, 0), 0.9), T_early.inverse()));
+  expectPose(graph.estimate("b", "a")->T_to_from, SE2(3, 0, 0));
+  EXPECT_DOUBLE_EQ(graph.estimate("b", "a")->verification, 0.9);
+  // Naming an estimate not held: addVerified's rule, so a lower V does not replace.
+  EXPECT_FALSE(graph.replaceVerified(estimateOf("b", "a", SE2(7, 0, 0), 0.8), T_early));
+  expectPose(graph.estimate("b", "a")->T_to_from, SE2(3, 0, 0));
+  EXPECT_TRUE(graph.replaceVerified(estimateOf("b", "a", SE2(8, 0, 0), 0.95), T_early));
+  expectPose(graph.estimate("b", "a")->T_to_from, SE2(8, 0, 0));
+  // A configured transform is never replaced.
+  graph.addConfigured("c", "a", SE2(0, 3, 0));
+  EXPECT_FALSE(graph.replaceVerified(estimateOf("c", "a", SE2(0, 4, 0), 0.99), SE2(0, 3, 0)));
+  expectPose(graph.estimate("c", "a")->T_to_from, SE2(0, 3, 0));
+}
+
+TEST(TeamGraphTest, AReaderNeverSeesAPairWithoutAnEdgeWhileItsEstimateIsReplaced) {
+  TeamGraph graph;
+  const SE2 T_one(1.0, 0.0, 0.1);
+  const SE2 T_two(2.0, 0.0, 0.2);
+  ASSERT_TRUE(graph.addVerified(estimateOf("b", "a", T_one, 0.9)));
+  std::atomic<bool> done{false};
+  std::atomic<int> reads{0};
+  std::atomic<int> unplaced{0};
+  std::thread reader([&] {
+    while (!done.load() || reads.load() == 0) {
+      unplaced += graph.estimate("b", "a").has_value() ? 0 : 1;
+      ++reads;
+    }
+  });
+  for (int i = 0; i < 20000; ++i) {
+    const bool odd = i % 2 == 1;
+    ASSERT_TRUE(
+        graph.replaceVerified(estimateOf("b", "a", odd ? T_one : T_two, 0.9), odd ? T_two : T_one));
+  }
+  done = true;
+  reader.join();
+  EXPECT_GT(reads.load(), 0);
+  EXPECT_EQ(unplaced.load(), 0) << "of " << reads.load() << " reads";
+  expectPose(graph.estimate("b", "a")->T_to_from, T_one);
 }
 
 TEST(TeamGraphTest, PlacesThroughThePathWithTheLargestProductOfV) {

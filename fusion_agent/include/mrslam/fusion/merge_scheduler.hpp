@@ -95,7 +95,7 @@ class MergeScheduler {
   /// What to do with a merge just accepted.
   struct Confirmation {
     bool use = false;  ///< into the graph now (else it waits in the pair's `pending`)
-    std::optional<PairwiseEstimate> replaced;  ///< the estimate in use it outweighs, withdrawn
+    std::optional<PairwiseEstimate> replaced;  ///< the estimate in use it outweighs and replaces
     std::string note;                          ///< why it waits, or what confirmed it
   };
   Confirmation confirm(const PairwiseEstimate& estimate, PairState& state) const;

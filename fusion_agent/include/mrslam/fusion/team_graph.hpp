@@ -78,6 +78,11 @@ class TeamGraph {
   /// Removes the pair's estimate when it is the one given (T_to_from equal, not configured):
   /// the maps no longer back it. Returns whether it was removed.
   bool withdraw(const std::string& from, const std::string& to, const SE2& T_to_from);
+  /// In one step (a reader never sees the pair without an edge): when the pair holds the
+  /// estimate `T_to_from_replaced` (as withdraw() matches it), `estimate` takes its place
+  /// whatever the V of either; otherwise this is addVerified(estimate). Returns whether it was
+  /// stored.
+  bool replaceVerified(const PairwiseEstimate& estimate, const SE2& T_to_from_replaced);
 
   /// The stored estimate between two robots, expressed as T_to_from (inverted when stored the
   /// other way round).
@@ -103,6 +108,12 @@ class TeamGraph {
   PlacementWeights weights_;
   using PairKey = std::pair<std::string, std::string>;  // ordered (smaller id first)
   static PairKey keyOf(const std::string& a, const std::string& b);
+  /// addVerified() with mutex_ held.
+  bool storeUnlessBetterHeld(const PairKey& key, const PairwiseEstimate& estimate);
+  /// The held, not configured edge of `key` when it is the estimate T_to_from of from's pair.
+  std::map<PairKey, PairwiseEstimate>::iterator heldEstimate(const PairKey& key,
+                                                             const std::string& from,
+                                                             const SE2& T_to_from);
 
   mutable std::mutex mutex_;
   std::map<PairKey, PairwiseEstimate> edges_;
