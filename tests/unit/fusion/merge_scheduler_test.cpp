@@ -76,6 +76,24 @@ RobotMap mapOf(const std::string& id, int known_cells) {
   return map;
 }
 
+/// A verified estimate of b's origin in a's frame.
+PairwiseEstimate verifiedBOntoA(const SE2& T_a_b, double verification) {
+  PairwiseEstimate estimate;
+  estimate.from = "b";
+  estimate.to = "a";
+  estimate.T_to_from = T_a_b;
+  estimate.verification = verification;
+  estimate.method = "scripted";
+  return estimate;
+}
+
+/// Settings that merge a pair again in every round whose maps grew.
+MergeSchedulerSettings everyRound() {
+  MergeSchedulerSettings settings;
+  settings.min_interval_s = 0.0;
+  return settings;
+}
+
 TEST(MergeSchedulerTest, MergesNewPairsThenOnlyAfterTheIntervalAndMaterialChange) {
   TeamGraph graph;
   std::atomic<int> calls{0};
@@ -130,12 +148,7 @@ TEST(MergeSchedulerTest, FinalMapsAreMergedOnceMoreWhateverTheInterval) {
 
 TEST(MergeSchedulerTest, RefusalsLeaveVerifiedTransformsInPlace) {
   TeamGraph graph;
-  PairwiseEstimate known;
-  known.from = "b";
-  known.to = "a";
-  known.T_to_from = SE2(3, 0, 0);
-  known.verification = 0.9;
-  graph.addVerified(known);
+  graph.addVerified(verifiedBOntoA(SE2(3, 0, 0), 0.9));
   std::atomic<int> calls{0};
   MergeScheduler scheduler(
       MergeSchedulerSettings{}, [&] { return std::make_unique<ScriptedMerger>(calls, false); },
@@ -186,12 +199,7 @@ TEST(MergeSchedulerTest, DuePairsAreMergedOnTheConfiguredThreadsInPairOrder) {
 
 TEST(MergeSchedulerTest, PairsWithoutAVerifiedTransformAreMergedBeforeRefinements) {
   TeamGraph graph;
-  PairwiseEstimate placed;
-  placed.from = "b";
-  placed.to = "a";
-  placed.verification = 0.95;
-  placed.method = "scripted";
-  ASSERT_TRUE(graph.addVerified(placed));
+  ASSERT_TRUE(graph.addVerified(verifiedBOntoA(SE2(), 0.95)));
   std::atomic<int> running{0};
   std::atomic<int> most{0};
   MergeSchedulerSettings settings;
@@ -217,10 +225,9 @@ TEST(MergeSchedulerTest, AMergeOfGrowingMapsIsUsedOnceASecondOneAgrees) {
   TeamGraph graph;
   std::atomic<int> calls{0};
   double shift_cells = 10.0;  // 1 m: the merger's answer, changed between rounds
-  MergeSchedulerSettings settings;
-  settings.min_interval_s = 0.0;
   MergeScheduler scheduler(
-      settings, [&] { return std::make_unique<ScriptedMerger>(calls, true, shift_cells); }, graph);
+      everyRound(), [&] { return std::make_unique<ScriptedMerger>(calls, true, shift_cells); },
+      graph);
   const auto t0 = MergeScheduler::Clock::now();
   const auto first = scheduler.runDue(pairOfMaps(100, false), t0);
   ASSERT_EQ(first.size(), 1u);
@@ -244,18 +251,11 @@ TEST(MergeSchedulerTest, AMergeOfGrowingMapsIsUsedOnceASecondOneAgrees) {
 
 TEST(MergeSchedulerTest, TwoAgreeingMergesOfGrownMapsReplaceADisagreeingEstimateInUse) {
   TeamGraph graph;
-  PairwiseEstimate early;  // in use, with a V the later merges do not reach
-  early.from = "b";
-  early.to = "a";
-  early.T_to_from = SE2(-3.0, 0.5, 3.1);
-  early.verification = 0.997;
-  early.method = "scripted";
-  ASSERT_TRUE(graph.addVerified(early));
+  // In use, with a V the later merges do not reach.
+  ASSERT_TRUE(graph.addVerified(verifiedBOntoA(SE2(-3.0, 0.5, 3.1), 0.997)));
   std::atomic<int> calls{0};
-  MergeSchedulerSettings settings;
-  settings.min_interval_s = 0.0;
   MergeScheduler scheduler(
-      settings, [&] { return std::make_unique<ScriptedMerger>(calls, true); }, graph);
+      everyRound(), [&] { return std::make_unique<ScriptedMerger>(calls, true); }, graph);
   const auto t0 = MergeScheduler::Clock::now();
   const auto first = scheduler.runDue(pairOfMaps(100, false), t0);
   ASSERT_EQ(first.size(), 1u);
@@ -285,10 +285,8 @@ TEST(MergeSchedulerTest, AWrongEarlyMergeIsNeverUsedWhenTheGrownMapsRefuseThePai
   TeamGraph graph;
   std::atomic<int> calls{0};
   bool accept = true;
-  MergeSchedulerSettings settings;
-  settings.min_interval_s = 0.0;
   MergeScheduler scheduler(
-      settings, [&] { return std::make_unique<ScriptedMerger>(calls, accept); }, graph);
+      everyRound(), [&] { return std::make_unique<ScriptedMerger>(calls, accept); }, graph);
   const auto t0 = MergeScheduler::Clock::now();
   const auto first = scheduler.runDue(pairOfMaps(100, false), t0);
   ASSERT_EQ(first.size(), 1u);
