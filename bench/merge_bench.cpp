@@ -3,8 +3,10 @@
 // reports the median of one merge over the cases and each block's share of the time
 // (SeedMerger::lastTimings), BM_FeatureMerge400 the same for the feature baseline; BM_Merge400
 // the median, the 90th percentile and the share merged within 2 cells and 1° of the truth for
-// other mergers of the registry (the exhaustive search, the chain) on the same cases;
-// BM_ExhaustiveSearch400 the exhaustive search alone, with and without its early stop.
+// other mergers of the registry (the exhaustive search, the chain) on the same cases, searching
+// every rotation or only those near the turns the walls suggest (`rotation_peaks`);
+// BM_ExhaustiveSearch400 the exhaustive search alone, with and without its early stop, and near
+// the suggested turns.
 // BM_MergeWholeBuilding: two turned 700-cell windows of the ACES map (crops of about 1000 cells a
 // side, which the exhaustive search takes on larger cells, max_grid_cells).
 #include <benchmark/benchmark.h>
@@ -97,8 +99,10 @@ bool mergeCases(benchmark::State& state, const char* file, MapMerger& merger,
   return true;
 }
 
-void BM_Merge400(benchmark::State& state, const char* method, const char* file) {
-  const std::unique_ptr<MapMerger> merger = makeMerger(method);
+/// `method` with the merge settings of `yaml` (a merge config's sections; "" for the defaults).
+void BM_Merge400(benchmark::State& state, const char* method, const char* file, const char* yaml) {
+  const std::unique_ptr<MapMerger> merger =
+      makeMergerFrom(method, Config::loadString(yaml, "bench.yaml"));
   std::vector<double> times;
   int correct = 0;
   if (!mergeCases(state, file, *merger, times,
@@ -112,17 +116,29 @@ void BM_Merge400(benchmark::State& state, const char* method, const char* file) 
   state.counters["correct_share"] =
       static_cast<double>(correct) / static_cast<double>(times.size());
 }
-BENCHMARK_CAPTURE(BM_Merge400, exhaustive_intel, "exhaustive", "carpin-intel.txt")
+/// The exhaustive search over every rotation of the full turn, or near two peaks of the walls'
+/// directions and their quarter turns only (`rotation_peaks`).
+constexpr const char* kEveryRotation = "exhaustive: {rotation_peaks: 0}\n";
+constexpr const char* kSuggestedTurns = "exhaustive: {rotation_peaks: 2, rotation_window_deg: 6}\n";
+BENCHMARK_CAPTURE(BM_Merge400, exhaustive_intel, "exhaustive", "carpin-intel.txt", kEveryRotation)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
-BENCHMARK_CAPTURE(BM_Merge400, chain_intel, "chain", "carpin-intel.txt")
+BENCHMARK_CAPTURE(BM_Merge400, chain_intel, "chain", "carpin-intel.txt", kEveryRotation)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(kCases);
+BENCHMARK_CAPTURE(BM_Merge400, exhaustive_turns_intel, "exhaustive", "carpin-intel.txt",
+                  kSuggestedTurns)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(kCases);
+BENCHMARK_CAPTURE(BM_Merge400, chain_turns_intel, "chain", "carpin-intel.txt", kSuggestedTurns)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
 
 /// The exhaustive search alone (exhaustive_search.hpp, default settings) on the same cases, each
-/// searched twice in turn: summing every point of every node, and stopping a node's sums once it
-/// cannot beat the bar (the default; the same hypotheses). Reports both medians and the ratio of
-/// the total times, measured side by side.
+/// searched three times in turn: summing every point of every node, and stopping a node's sums
+/// once it cannot beat the bar (the default; the same hypotheses), whose medians and ratio of
+/// total times are reported side by side; and near two peaks of the walls' turns only (its
+/// median).
 void BM_ExhaustiveSearch400(benchmark::State& state, const char* file) {
   cv::setNumThreads(1);  // one core
   const std::vector<merge_test::KnownCase> known = cases(file);
@@ -131,10 +147,16 @@ void BM_ExhaustiveSearch400(benchmark::State& state, const char* file) {
     return;
   }
   ExhaustiveSearchSettings every_point;
+  every_point.rotation_peaks = 0;  // every rotation of the full turn
   every_point.stop_early = false;
-  const ExhaustiveSearchSettings stop_early;
+  ExhaustiveSearchSettings stop_early;
+  stop_early.rotation_peaks = 0;
   std::vector<double> early_ms;
   std::vector<double> every_ms;
+  std::vector<double> turns_ms;
+  ExhaustiveSearchSettings near_turns;
+  near_turns.rotation_peaks = 2;
+  near_turns.rotation_window_deg = 6.0;
   int same = 0;
   std::size_t next = 0;
   for (auto _ : state) {
@@ -149,6 +171,7 @@ void BM_ExhaustiveSearch400(benchmark::State& state, const char* file) {
     };
     const std::vector<ExhaustiveHypothesis> early = search(stop_early, early_ms);
     const std::vector<ExhaustiveHypothesis> every = search(every_point, every_ms);
+    search(near_turns, turns_ms);
     same += early.size() == every.size() &&
                     std::equal(early.begin(), early.end(), every.begin(),
                                [](const ExhaustiveHypothesis& a, const ExhaustiveHypothesis& b) {
@@ -162,6 +185,7 @@ void BM_ExhaustiveSearch400(benchmark::State& state, const char* file) {
   };
   state.counters["median_ms"] = percentileOf(early_ms, 0.5);
   state.counters["every_point_median_ms"] = percentileOf(every_ms, 0.5);
+  state.counters["suggested_turns_median_ms"] = percentileOf(turns_ms, 0.5);
   state.counters["time_ratio"] = total(early_ms) / total(every_ms);
   state.counters["same_share"] = static_cast<double>(same) / static_cast<double>(early_ms.size());
 }

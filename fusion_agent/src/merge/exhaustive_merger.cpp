@@ -78,6 +78,9 @@ ExhaustiveSearchSettings loadExhaustiveSearchSettings(const Config& config) {
   s.search_hypotheses =
       static_cast<int>(config.getInt("search_hypotheses", s.search_hypotheses, {1, 1000}));
   s.both_ways = config.getBool("both_ways", s.both_ways);
+  s.rotation_peaks = static_cast<int>(config.getInt("rotation_peaks", s.rotation_peaks, {0, 90}));
+  s.rotation_window_deg =
+      config.getDouble("rotation_window_deg", s.rotation_window_deg, {0.0, 90.0});
   return s;
 }
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
+#include "mrslam/fusion/merge/radon.hpp"
+
 namespace mrslam::fusion {
 
 namespace {
@@ -51,30 +53,32 @@ struct PointSet {
   double radius = 0.0;
 };
 
-/// Whether a wall lies within `reach` grid cells (square) of (x, y).
-bool nearWall(const SearchGrid& grid, int x, int y, int reach) {
-  for (int dy = -reach; dy <= reach; ++dy) {
-    for (int dx = -reach; dx <= reach; ++dx) {
-      const int nx = x + dx;
-      const int ny = y + dy;
-      if (nx >= 0 && ny >= 0 && nx < grid.width && ny < grid.height &&
-          grid.at(nx, ny) == GridClass::kWall) {
-        return true;
-      }
+/// Cells with a wall within `reach` grid cells (square, the cell itself included): 255, else 0.
+cv::Mat nearWalls(const SearchGrid& grid, int reach) {
+  cv::Mat walls(grid.height, grid.width, CV_8U);
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      walls.at<std::uint8_t>(y, x) = grid.at(x, y) == GridClass::kWall ? 255 : 0;
     }
   }
-  return false;
+  if (reach <= 0) {
+    return walls;
+  }
+  cv::Mat near;
+  cv::dilate(walls, near, cv::getStructuringElement(cv::MORPH_RECT, {2 * reach + 1, 2 * reach + 1}),
+             {-1, -1}, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  return near;
 }
 
 /// An even sample of the cells of class `wanted`; free cells only away from walls (a cell of
 /// misalignment must not put them on the other map's walls).
 std::vector<Eigen::Vector2d> cellsOf(const SearchGrid& grid, GridClass wanted, int max_count,
                                      int wall_margin) {
+  const cv::Mat near = wanted == GridClass::kWall ? cv::Mat() : nearWalls(grid, wall_margin);
   std::vector<Eigen::Vector2d> all;
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
-      if (grid.at(x, y) == wanted &&
-          (wanted == GridClass::kWall || !nearWall(grid, x, y, wall_margin))) {
+      if (grid.at(x, y) == wanted && (near.empty() || near.at<std::uint8_t>(y, x) == 0)) {
         all.emplace_back(x, y);
       }
     }
@@ -167,10 +171,24 @@ std::vector<float> valueGrid(const SearchGrid& grid, int pad, int stride, int ro
   return values;
 }
 
-std::vector<float> maxPooled(const std::vector<float>& finer, int stride, int rows, int step) {
+/// The cells of a padded grid that may hold a value other than 0: [x_begin, x_end) ×
+/// [y_begin, y_end); 0 everywhere else.
+struct ValuedArea {
+  int x_begin = 0;
+  int x_end = 0;
+  int y_begin = 0;
+  int y_end = 0;
+};
+
+/// The max over each cell's 2 × 2 corners `step` apart of `finer` (whose values are 0 outside
+/// `area`); `area` becomes the coarser grid's (a window reaching into it from below or left).
+std::vector<float> maxPooled(const std::vector<float>& finer, int stride, int rows, int step,
+                             ValuedArea& area) {
+  area.x_begin = std::max(0, area.x_begin - step);
+  area.y_begin = std::max(0, area.y_begin - step);
   std::vector<float> coarser(finer.size(), 0.0f);
-  for (int y = 0; y < rows; ++y) {
-    for (int x = 0; x < stride; ++x) {
+  for (int y = area.y_begin; y < area.y_end; ++y) {
+    for (int x = area.x_begin; x < area.x_end; ++x) {
       float best = finer[static_cast<std::size_t>(y) * stride + x];
       const bool right = x + step < stride;
       const bool up = y + step < rows;
@@ -197,11 +215,13 @@ ValuePyramid valuePyramid(const SearchGrid& grid, int pad,
   pyramid.rows = grid.height + 2 * pad;
   pyramid.walls.push_back(valueGrid(grid, pad, pyramid.stride, pyramid.rows, settings));
   pyramid.free.push_back(freeValueGrid(grid, pad, pyramid.stride, pyramid.rows, settings));
+  ValuedArea walls{pad, pad + grid.width, pad, pad + grid.height};
+  ValuedArea free = walls;
   for (int h = 1; h <= settings.depth; ++h) {
     pyramid.walls.push_back(
-        maxPooled(pyramid.walls.back(), pyramid.stride, pyramid.rows, 1 << (h - 1)));
+        maxPooled(pyramid.walls.back(), pyramid.stride, pyramid.rows, 1 << (h - 1), walls));
     pyramid.free.push_back(
-        maxPooled(pyramid.free.back(), pyramid.stride, pyramid.rows, 1 << (h - 1)));
+        maxPooled(pyramid.free.back(), pyramid.stride, pyramid.rows, 1 << (h - 1), free));
   }
   return pyramid;
 }
@@ -227,17 +247,30 @@ std::vector<std::ptrdiff_t> turnedOffsets(const std::vector<Eigen::Vector2d>& po
   return offsets;
 }
 
-std::vector<Rotation> rotations(const PointSet& set, int stride, double step_cells) {
+/// Whether `theta` lies within `window` of one of `turns` (always, when there are none).
+bool nearAny(double theta, const std::vector<double>& turns, double window) {
+  return turns.empty() || std::any_of(turns.begin(), turns.end(), [&](double turn) {
+           return std::abs(std::remainder(theta - turn, 2.0 * M_PI)) <= window;
+         });
+}
+
+/// The rotations θ_k of the full turn, those near `turns` only when it holds any.
+std::vector<Rotation> rotations(const PointSet& set, int stride, double step_cells,
+                                const std::vector<double>& turns, double window) {
   const double step = set.radius > step_cells ? step_cells / set.radius : M_PI / 2.0;
   const int count = std::max(4, static_cast<int>(std::ceil(2.0 * M_PI / step)));
-  std::vector<Rotation> all(static_cast<std::size_t>(count));
+  std::vector<Rotation> kept;
   for (int k = 0; k < count; ++k) {
-    Rotation& rotation = all[static_cast<std::size_t>(k)];
+    Rotation rotation;
     rotation.theta = 2.0 * M_PI * k / count;
+    if (!nearAny(rotation.theta, turns, window)) {
+      continue;
+    }
     rotation.walls = turnedOffsets(set.walls, rotation.theta, stride);
     rotation.free = turnedOffsets(set.free, rotation.theta, stride);
+    kept.push_back(std::move(rotation));
   }
-  return all;
+  return kept;
 }
 
 /// A node of the branch and bound: rotation, the low corner of its translations (grid cells of
@@ -583,7 +616,8 @@ std::vector<ExhaustiveHypothesis> refined(const std::vector<ExhaustiveHypothesis
 /// settings.cell_size), refined by `fine` (the full-resolution score of `from` onto `to`).
 std::vector<ExhaustiveHypothesis> searchOneWay(const SearchGrid& grid_from,
                                                const SearchGrid& grid_to, const FineScorer& fine,
-                                               const ExhaustiveSearchSettings& settings) {
+                                               const ExhaustiveSearchSettings& settings,
+                                               const std::vector<double>& turns) {
   const int cell_size = std::max(1, settings.cell_size);
   const PointSet set = pointSet(grid_from, settings);
   if (set.walls.empty() || std::none_of(grid_to.classes.begin(), grid_to.classes.end(),
@@ -593,12 +627,14 @@ std::vector<ExhaustiveHypothesis> searchOneWay(const SearchGrid& grid_from,
   const int reach = static_cast<int>(std::ceil(set.radius)) + 1;
   const int top = 1 << settings.depth;
   const ValuePyramid pyramid = valuePyramid(grid_to, 2 * reach + top + 1, settings);
-  const std::vector<Rotation> turns = rotations(set, pyramid.stride, settings.rotation_step_cells);
+  const std::vector<Rotation> turned =
+      rotations(set, pyramid.stride, settings.rotation_step_cells, turns,
+                settings.rotation_window_deg * M_PI / 180.0);
   KeptLeaves kept(settings, settings.min_score_share * static_cast<double>(set.walls.size()));
   const PointCaps caps{1.0f, static_cast<float>(std::max(0.0, settings.free_weight))};
-  BranchAndBound search(pyramid, turns, set, cell_size, caps, settings.stop_early, kept);
+  BranchAndBound search(pyramid, turned, set, cell_size, caps, settings.stop_early, kept);
   std::vector<Node> nodes;
-  for (int k = 0; k < static_cast<int>(turns.size()); ++k) {
+  for (int k = 0; k < static_cast<int>(turned.size()); ++k) {
     search.addTopNodes(k, -reach, grid_to.width + reach, -reach, grid_to.height + reach, top,
                        settings.depth, nodes);
   }
@@ -678,6 +714,50 @@ double exhaustiveScore(const GridMap& from, const GridMap& to, const GridTransfo
   return ExhaustiveScore(from, to, settings, classes).at(T_to_from);
 }
 
+namespace {
+
+std::vector<double> radonProfile(const GridMap& map, const SimilaritySettings& classes,
+                                 const RadonSettings& radon) {
+  std::vector<cv::Point> walls;
+  for (int y = 0; y < map.geometry.height; ++y) {
+    for (int x = 0; x < map.geometry.width; ++x) {
+      if (map.at(x, y) >= classes.occupied_threshold) {
+        walls.emplace_back(x, y);
+      }
+    }
+  }
+  if (walls.empty()) {
+    return {};
+  }
+  const cv::Size size(map.geometry.width, map.geometry.height);
+  return radonSpectrum(radonTransform(walls, size, radon.angle_step_rad),
+                       radon.profile_highpass_rad);
+}
+
+}  // namespace
+
+std::vector<double> suggestedTurns(const GridMap& from, const GridMap& to,
+                                   const ExhaustiveSearchSettings& settings,
+                                   const SimilaritySettings& classes) {
+  if (settings.rotation_peaks <= 0) {
+    return {};
+  }
+  const RadonSettings radon;
+  const std::vector<double> profile_from = radonProfile(from, classes, radon);
+  const std::vector<double> profile_to = radonProfile(to, classes, radon);
+  if (profile_from.empty() || profile_to.empty()) {
+    return {};
+  }
+  std::vector<double> turns;
+  for (const double peak :
+       rotationCandidates(spectrumCorrelation(profile_from, profile_to), settings.rotation_peaks)) {
+    for (int quarter = 0; quarter < 4; ++quarter) {
+      turns.push_back(peak + quarter * M_PI / 2.0);
+    }
+  }
+  return turns;
+}
+
 int searchCellSize(const GridMap& from, const GridMap& to,
                    const ExhaustiveSearchSettings& settings) {
   return blockCellsForSize(from, to, settings.cell_size, settings.max_grid_cells);
@@ -691,11 +771,16 @@ std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const Gr
   search.cell_size = searchCellSize(from, to, settings);
   const SearchGrid grid_from = toSearchGrid(from, search.cell_size, classes);  // for both ways
   const SearchGrid grid_to = toSearchGrid(to, search.cell_size, classes);
+  const std::vector<double> turns = suggestedTurns(from, to, settings, classes);
+  std::vector<double> turns_back;
+  for (const double turn : turns) {
+    turns_back.push_back(-turn);
+  }
   std::vector<ExhaustiveHypothesis> all =
-      searchOneWay(grid_from, grid_to, score.parts_->forward, search);
+      searchOneWay(grid_from, grid_to, score.parts_->forward, search, turns);
   if (settings.both_ways) {
     for (ExhaustiveHypothesis& reverse :
-         searchOneWay(grid_to, grid_from, score.parts_->backward, search)) {
+         searchOneWay(grid_to, grid_from, score.parts_->backward, search, turns_back)) {
       reverse.T_to_from = reverse.T_to_from.inverse();
       all.push_back(reverse);
     }

@@ -198,9 +198,11 @@ TEST(MergeChainAlternativesTest, AnUnwalledAlternativeThatOverlapsLessDoesNotRef
   const MergeCase merge_case = cut(kRightMergeWithASmallerUnwalledFit);
   const std::unique_ptr<MapMerger> chain = chainWith("");
   merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
-  // Without the overlap bar its cleaner, smaller alternative refuses it: the bar decides.
+  // Without the overlap bar its cleaner, smaller alternative refuses it: the bar decides (the
+  // alternative is a hypothesis of the search over the full turn).
   const MergeResult any_overlap =
-      chainWith("walls_alternative_overlap: 0")->merge(merge_case.a, merge_case.b);
+      merge_test::chainFrom(merge_test::kEveryRotation + "chain: {walls_alternative_overlap: 0}\n")
+          ->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(any_overlap.accepted);
   EXPECT_NE(any_overlap.reason.find("the walls it leaves unmet"), std::string::npos)
       << any_overlap.reason;

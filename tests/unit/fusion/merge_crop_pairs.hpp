@@ -46,6 +46,11 @@ inline MergeCase cut(const TwoBuildings& pair) {
   return makeCase(source(pair.map_a), pair.a, source(pair.map_b), pair.b);
 }
 
+/// The exhaustive search over every rotation of the full turn (a merge config's section): cases
+/// found before the search was kept near the walls' turns (`rotation_peaks`), where a rule
+/// decides the case only when the search proposes every rotation's transforms.
+inline const std::string kEveryRotation = "exhaustive: {rotation_peaks: 0}\n";
+
 /// The chain merger with the settings of `yaml` (a merge config's sections) over its defaults.
 inline std::unique_ptr<MapMerger> chainFrom(const std::string& yaml) {
   return makeMergerFrom("chain", Config::loadString(yaml, "merge.yaml"));

@@ -110,7 +110,8 @@ TEST(ExhaustiveSearchTest, BranchAndBoundKeepsWhatScoringEveryTranslationKeeps) 
                          {{450, 540}, 170, -1.1, {2, 7}, {8, 1}}};
   const MergeCase merge_case = cut(pair);
   ExhaustiveSearchSettings many;
-  many.cell_size = 3;  // a small search, so that every leaf can be scored
+  many.rotation_peaks = 0;  // every rotation of the full turn
+  many.cell_size = 3;       // a small search, so that every leaf can be scored
   many.min_best_share = 0.1;
   {
     SCOPED_TRACE("many hypotheses");

@@ -61,8 +61,9 @@ TEST(MergeOwnScoreTest, BothChecksAreOffByDefaultAndRead) {
 
 TEST(MergeOwnScoreTest, AnOwnPeakAwayRefusesOnlyWhenChecked) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-intel.txt");
-  expectRefusedByTheCheckAndMergedByDefault(kOwnPeakAway, "check_own_score: true",
-                                            "own score peaks elsewhere");
+  // The judge's transform the check refuses is that of the search over the full turn.
+  expectRefusedByTheCheckAndMergedByDefault(
+      kOwnPeakAway, "check_own_score: true, rotation_peaks: 0", "own score peaks elsewhere");
 }
 
 TEST(MergeOwnScoreTest, AFlatTurnRefusesOnlyWhenCheckedEvenWithoutTheOwnPeak) {

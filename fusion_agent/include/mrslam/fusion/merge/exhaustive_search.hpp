@@ -19,7 +19,12 @@
 //    `max_points` / `max_free_points`, about the walls' centroid.
 // 3. Rotations θ_k = k · step over the full turn, step = `rotation_step_cells` / r (r: the
 //    largest distance of a point from the centroid, grid cells), so that no point moves more
-//    than that many cells between two rotations.
+//    than that many cells between two rotations. With `rotation_peaks` > 0 only the θ_k within
+//    `rotation_window_deg` of the turns the walls suggest: the `rotation_peaks` strongest peaks
+//    of the correlation of the two maps' Radon profiles (radon.hpp, of their occupied cells;
+//    modulo a half turn), each with its quarter turns. Walls of one building run in few
+//    directions, so the turns between two maps of it are few too; the quarter turns are searched
+//    whatever the profiles say, as a room turned by a quarter is the wrong merge to rule out.
 // 4. The score of (θ, t): the sum of the value grids at the rounded turned points shifted by t.
 //    Branch and bound over t: a node covers 2^h × 2^h translations; its bound is the same sum on
 //    the grids max-pooled over 2^h × 2^h windows (precomputed for h = 0..`depth`), never below
@@ -71,6 +76,9 @@ struct ExhaustiveSearchSettings {
   double min_best_share = 0.4;       ///< least score of a hypothesis, share of the best's
   double distinct_cells = 8.0;       ///< hypotheses closer (map cells) ...
   double distinct_deg = 3.0;         ///< ... and turned less than this (degrees) are alike
+  int rotation_peaks = 2;            ///< rotations searched: near this many peaks of the walls'
+                                     ///< Radon correlation (and their quarter turns); 0: all
+  double rotation_window_deg = 6.0;  ///< ... within this of each (degrees)
 };
 
 /// A transform and its score (sum of the value grid over the points; at most the point count).
@@ -121,6 +129,12 @@ std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const Gr
 std::vector<ExhaustiveHypothesis> exhaustiveSearch(const GridMap& from, const GridMap& to,
                                                    const ExhaustiveSearchSettings& settings,
                                                    const SimilaritySettings& classes);
+
+/// Step 3's turns of `from` onto `to` the walls suggest (radians, each peak and its quarter turns);
+/// empty when `rotation_peaks` is 0 or either map has no occupied cell (every rotation searched).
+std::vector<double> suggestedTurns(const GridMap& from, const GridMap& to,
+                                   const ExhaustiveSearchSettings& settings,
+                                   const SimilaritySettings& classes);
 
 /// The score of step 7 (both ways, full resolution) at one transform.
 double exhaustiveScore(const GridMap& from, const GridMap& to, const GridTransform& T_to_from,
