@@ -125,6 +125,14 @@ TEST(ExhaustiveSearchTest, BranchAndBoundKeepsWhatScoringEveryTranslationKeeps) 
     SCOPED_TRACE("the best alone");
     expectTheSameAsEveryLeafScored(merge_case, one);
   }
+  // The rotations near the walls' turns are dropped before the branch and bound: on those kept it
+  // must keep what scoring every translation keeps too.
+  ExhaustiveSearchSettings near_turns = many;
+  near_turns.rotation_peaks = 2;
+  {
+    SCOPED_TRACE("near the walls' turns only");
+    expectTheSameAsEveryLeafScored(merge_case, near_turns);
+  }
 }
 
 TEST(ExhaustiveSearchTest, TheTruthOfLowOverlapCropsIsAmongTheHypotheses) {

@@ -1,7 +1,7 @@
 // The exhaustive search restricted to the turns the walls suggest (`rotation_peaks`): the turns
-// hold the truth's and its quarter turns, the restricted search finds the truth and keeps what
-// scoring every translation of those rotations keeps, and every hypothesis lies near a suggested
-// turn.
+// hold the truth's and its quarter turns, the restricted search finds the truth, and every
+// hypothesis lies near a suggested turn (merge_exhaustive_test.cpp: it keeps what scoring every
+// translation of those rotations keeps).
 
 #include <gtest/gtest.h>
 
@@ -92,38 +92,6 @@ TEST(ExhaustiveTurnsTest, TheSearchNearTheSuggestedTurnsFindsTheTruthAndStaysNea
               settings.rotation_window_deg + 2.0)
         << hypothesis.T_to_from.theta_rad;
   }
-}
-
-// The restriction drops rotations before the branch and bound: on the rotations kept, the search
-// must keep what scoring every translation keeps.
-TEST(ExhaustiveTurnsTest, BranchAndBoundOnTheSuggestedTurnsKeepsWhatScoringEveryLeafKeeps) {
-  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
-  const CropPair pair = {"freiburg-intel.pgm",
-                         0,
-                         {{400, 500}, 170, 0.4, {6, 2}, {3, 9}},
-                         {{450, 540}, 170, -1.1, {2, 7}, {8, 1}}};
-  const MergeCase merge_case = cut(pair);
-  ExhaustiveSearchSettings settings;
-  settings.cell_size = 3;
-  settings.min_best_share = 0.1;
-  settings.rotation_peaks = 2;
-  ExhaustiveSearchSettings every_leaf = settings;
-  every_leaf.depth = 0;
-  every_leaf.stop_early = false;
-  const std::vector<ExhaustiveHypothesis> found =
-      exhaustiveSearch(merge_case.a, merge_case.b, settings, {});
-  const std::vector<ExhaustiveHypothesis> reference =
-      exhaustiveSearch(merge_case.a, merge_case.b, every_leaf, {});
-  ASSERT_FALSE(reference.empty());
-  ASSERT_EQ(found.size(), reference.size());
-  for (std::size_t i = 0; i < found.size(); ++i) {
-    EXPECT_NEAR(found[i].T_to_from.theta_rad, reference[i].T_to_from.theta_rad, 1e-12) << i;
-    EXPECT_NEAR((found[i].T_to_from.t_cells - reference[i].T_to_from.t_cells).norm(), 0.0, 1e-9)
-        << i;
-  }
-  const CaseError error = caseError(merge_case, found.front().T_to_from);
-  EXPECT_LE(error.distance_cells, 2.0);
-  EXPECT_LE(error.angle_rad * 180.0 / M_PI, 1.0);
 }
 
 TEST(ExhaustiveTurnsTest, SettingsAreReadWithRangeChecks) {
