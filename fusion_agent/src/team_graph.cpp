@@ -20,6 +20,12 @@ PairwiseEstimate inverted(const PairwiseEstimate& estimate) {
   return inverse;
 }
 
+// The estimate as the pair `key` stores it: from the key's first robot.
+PairwiseEstimate storedAs(const std::pair<std::string, std::string>& key,
+                          const PairwiseEstimate& estimate) {
+  return key.first == estimate.from ? estimate : inverted(estimate);
+}
+
 // Cost of an edge on a path: −log V, so the cheapest path has the largest product of V.
 double edgeCost(const PairwiseEstimate& estimate) {
   return -std::log(std::max(estimate.verification, 1e-12));
@@ -146,7 +152,7 @@ void TeamGraph::addConfigured(const std::string& from, const std::string& to,
   estimate.configured = true;
   std::lock_guard<std::mutex> lock(mutex_);
   const PairKey key = keyOf(from, to);
-  edges_[key] = key.first == from ? estimate : inverted(estimate);
+  edges_[key] = storedAs(key, estimate);
 }
 
 bool TeamGraph::addVerified(const PairwiseEstimate& estimate) {
@@ -166,7 +172,7 @@ bool TeamGraph::storeUnlessBetterHeld(const PairKey& key, const PairwiseEstimate
       return false;
     }
   }
-  edges_[key] = key.first == estimate.from ? estimate : inverted(estimate);
+  edges_[key] = storedAs(key, estimate);
   return true;
 }
 
@@ -201,7 +207,7 @@ bool TeamGraph::replaceVerified(const PairwiseEstimate& estimate, const SE2& T_t
   if (held == edges_.end()) {
     return storeUnlessBetterHeld(key, estimate);
   }
-  held->second = key.first == estimate.from ? estimate : inverted(estimate);
+  held->second = storedAs(key, estimate);
   return true;
 }
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
+#include "mrslam/fusion/merge/edges.hpp"
 #include "mrslam/fusion/merge/radon.hpp"
 
 namespace mrslam::fusion {
@@ -718,19 +719,12 @@ namespace {
 
 std::vector<double> radonProfile(const GridMap& map, const SimilaritySettings& classes,
                                  const RadonSettings& radon) {
-  std::vector<cv::Point> walls;
-  for (int y = 0; y < map.geometry.height; ++y) {
-    for (int x = 0; x < map.geometry.width; ++x) {
-      if (map.at(x, y) >= classes.occupied_threshold) {
-        walls.emplace_back(x, y);
-      }
-    }
-  }
+  const cv::Mat occupied = occupiedImage(map, classes.occupied_threshold);
+  const std::vector<cv::Point> walls = nonZeroCells(occupied);
   if (walls.empty()) {
     return {};
   }
-  const cv::Size size(map.geometry.width, map.geometry.height);
-  return radonSpectrum(radonTransform(walls, size, radon.angle_step_rad),
+  return radonSpectrum(radonTransform(walls, occupied.size(), radon.angle_step_rad),
                        radon.profile_highpass_rad);
 }
 
