@@ -11,6 +11,9 @@ namespace {
 
 constexpr double kFlushTimeoutS = 5.0;  // at the end: readers get this long to take the last map
 constexpr std::size_t kMaxHeldRendezvous = 64;  // the oldest rendezvous beyond are dropped
+// Once every final map is in, the sightings they count (another topic, with no order between
+// the two) get this long to arrive before the agent finishes without them.
+constexpr double kFinalSightingsWaitS = 5.0;
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -53,6 +56,42 @@ std::string FusionLoop::missingRobots() const {
     }
   }
   return missing;
+}
+
+std::string FusionLoop::sightingsOutstanding() const {
+  std::string outstanding;
+  for (const std::string& robot_id : config_.expected_robots) {
+    const std::uint64_t published = store_.sightingsPublished(robot_id);
+    const std::uint64_t received = node_.sightingsReceived(robot_id);
+    if (received < published) {
+      outstanding += (outstanding.empty() ? "" : ", ") + robot_id + " (" +
+                     std::to_string(received) + " of " + std::to_string(published) + ")";
+    }
+  }
+  return outstanding;
+}
+
+bool FusionLoop::finalSightingsHeld() {
+  const std::string outstanding = sightingsOutstanding();
+  if (outstanding.empty()) {
+    return true;
+  }
+  if (!final_maps_since_) {
+    final_maps_since_ = Clock::now();
+    spdlog::info(
+        "fusion: every final map is in; waiting up to {} s for the sightings they count: "
+        "{} (received of written)",
+        kFinalSightingsWaitS, outstanding);
+    return false;
+  }
+  if (secondsSince(*final_maps_since_) < kFinalSightingsWaitS) {
+    return false;
+  }
+  spdlog::warn(
+      "fusion: sightings the robots wrote are still missing after {} s: {} (received of "
+      "written); finishing without them",
+      kFinalSightingsWaitS, outstanding);
+  return true;
 }
 
 void FusionLoop::publishAttempts() {
@@ -197,7 +236,7 @@ int FusionLoop::run(const std::atomic<bool>& shutdown) {
                                 0.0, config_.publish_period_s - secondsSince(last_publish))));
     }
     store_.waitForChange(offered_version_, std::chrono::ceil<std::chrono::milliseconds>(wait));
-    const bool complete = config_.exit_when_final && allExpectedFinal();
+    const bool complete = config_.exit_when_final && allExpectedFinal() && finalSightingsHeld();
     const bool timed_out =
         config_.max_runtime_s > 0.0 && secondsSince(start) > config_.max_runtime_s;
     const bool stopping = complete || timed_out || shutdown.load();

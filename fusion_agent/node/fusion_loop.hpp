@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "fusion_node.hpp"
@@ -27,6 +28,10 @@ class FusionLoop {
 
   bool allExpectedFinal() const;
   std::string missingRobots() const;
+  /// The expected robots whose final map counts sightings not yet received ("robot2 (1 of 3)").
+  std::string sightingsOutstanding() const;
+  /// Whether the sightings the final maps count are in, or waited for long enough.
+  bool finalSightingsHeld();
   /// Rebuilds and publishes the global map from the newest maps and placements.
   void publish();
   /// Logs (once each) the merges the loop check drops.
@@ -54,6 +59,7 @@ class FusionLoop {
   std::uint64_t offered_version_ = 0;
   bool changed_ = false;
   bool written_ = false;
+  std::optional<Clock::time_point> final_maps_since_;  ///< when sightings were first missed
   RendezvousTracker rendezvous_;  ///< held rendezvous, checked against the maps when due
 };
 

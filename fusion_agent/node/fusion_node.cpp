@@ -22,6 +22,8 @@ using eprosima::fastrtps::types::ReturnCode_t;
 
 namespace {
 
+constexpr std::size_t kMaxCountedObservers = 1024;  // robots whose sightings are counted
+
 const char* stateName(msg::RobotState state) {
   switch (state) {
     case msg::ROBOT_STARTING:
@@ -126,6 +128,22 @@ void FusionNode::on_data_available(DataReader* reader) {
   }
 }
 
+std::uint64_t FusionNode::sightingsReceived(const std::string& observer_id) const {
+  std::lock_guard<std::mutex> lock(sightings_mutex_);
+  const auto found = sightings_received_.find(observer_id);
+  return found == sightings_received_.end() ? 0 : found->second;
+}
+
+void FusionNode::countSightingOf(const std::string& observer_id) {
+  std::lock_guard<std::mutex> lock(sightings_mutex_);
+  const auto found = sightings_received_.find(observer_id);
+  if (found != sightings_received_.end()) {
+    ++found->second;
+  } else if (isValidRobotId(observer_id) && sightings_received_.size() < kMaxCountedObservers) {
+    sightings_received_.emplace(observer_id, 1);  // refused ones too: the robot counted them
+  }
+}
+
 void FusionNode::receiveSightings(DataReader* reader) {
   msg::RobotSightingMsg message;
   SampleInfo info;
@@ -155,6 +173,7 @@ void FusionNode::receiveSightings(DataReader* reader) {
       spdlog::info("fusion: {} saw {} at {:.2f} m, bearing {:.1f} deg", sighting.observer,
                    sighting.observed, sighting.range_m, sighting.bearing_rad * 180.0 / M_PI);
     }
+    countSightingOf(sighting.observer);  // after the book holds it: the loop may stop on the count
   }
 }
 
@@ -188,6 +207,7 @@ void FusionNode::receiveMaps(DataReader* reader) {
     map.sequence = message.sequence_number();
     map.scans_inserted = message.scans_inserted();
     map.is_final = message.is_final();
+    map.sightings_published = message.sightings_published();
     map.map = std::move(grid.value());
     for (const msg::Pose2D& pose : message.trajectory()) {
       map.trajectory.push_back(dds::fromMsg(pose));

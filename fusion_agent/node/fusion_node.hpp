@@ -37,6 +37,9 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   const ErrorCounter& rejected() const { return rejected_; }
   /// The robots' sightings of each other received so far, paired into rendezvous.
   RendezvousBook& rendezvous() { return rendezvous_; }
+  /// Sightings received from `observer_id` (refused ones too), each counted once the book has
+  /// taken it: a robot's final map says how many it wrote.
+  std::uint64_t sightingsReceived(const std::string& observer_id) const;
 
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override;
   void on_liveliness_changed(
@@ -50,6 +53,7 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   void receiveMaps(eprosima::fastdds::dds::DataReader* reader);
   void receiveStatus(eprosima::fastdds::dds::DataReader* reader);
   void receiveSightings(eprosima::fastdds::dds::DataReader* reader);
+  void countSightingOf(const std::string& observer_id);
   void publishStatus(const GlobalMapResult& result, std::uint64_t sequence);
   /// Remembers which writer sends a robot's maps; true when it is a new one (a restart).
   bool noteWriter(const std::string& robot_id,
@@ -65,6 +69,8 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   eprosima::fastdds::dds::DataReader* sighting_reader_ = nullptr;
   RendezvousBook rendezvous_;
   ErrorCounter rejected_sightings_{"fusion: sighting refused"};
+  mutable std::mutex sightings_mutex_;
+  std::map<std::string, std::uint64_t> sightings_received_;  ///< by observer
   eprosima::fastdds::dds::DataWriter* global_map_writer_ = nullptr;
   eprosima::fastdds::dds::DataWriter* transforms_writer_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;

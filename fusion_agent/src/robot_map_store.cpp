@@ -72,4 +72,10 @@ bool RobotMapStore::isFinal(const std::string& robot_id) const {
   return found != maps_.end() && found->second.is_final;
 }
 
+std::uint64_t RobotMapStore::sightingsPublished(const std::string& robot_id) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto found = maps_.find(robot_id);
+  return found == maps_.end() ? 0 : found->second.sightings_published;
+}
+
 }  // namespace mrslam::fusion

@@ -89,6 +89,7 @@ void RobotNode::publishMap(const MapSnapshot& snapshot) {
   map_message_.sequence_number(snapshot.sequence);
   map_message_.scans_inserted(static_cast<std::uint32_t>(snapshot.scans_inserted));
   map_message_.is_final(snapshot.is_final);
+  map_message_.sightings_published(snapshot.sightings_published);
   dds::gridToMsg(snapshot.map, map_message_.info(), map_message_.data());
   map_message_.trajectory().clear();
   for (const SE2& pose : snapshot.trajectory) {

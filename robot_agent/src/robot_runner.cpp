@@ -47,6 +47,7 @@ RunSummary RobotRunner::run(const std::atomic<bool>& stop) {
     output_.publishPose(stamp, pipeline_.pose(), pipeline_.covariance());
     if (update == RobotPipeline::Update::kSighting) {
       output_.publishSighting(pipeline_.lastSighting());
+      ++sightings_published_;
     }
     const Stamp now = pipeline_.latestStamp();
     if (update == RobotPipeline::Update::kScan &&
@@ -113,6 +114,7 @@ MapSnapshot RobotRunner::snapshot(bool is_final) const {
   snapshot.sequence = maps_published_ + 1;
   snapshot.scans_inserted = pipeline_.counters().scans;
   snapshot.is_final = is_final;
+  snapshot.sightings_published = sightings_published_;
   snapshot.map = pipeline_.grid().toGridMap();
   snapshot.trajectory = decimateTrajectory(pipeline_.trajectory(), settings_.trajectory_points);
   return snapshot;

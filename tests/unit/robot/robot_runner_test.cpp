@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <deque>
 
 #include "mrslam/robot/odometry_estimator.hpp"
@@ -38,8 +39,10 @@ class RecordingOutput : public RobotOutput {
   }
   void publishMap(const MapSnapshot& snapshot) override { maps.push_back(snapshot); }
   void publishStatus(const StatusReport& report) override { states.push_back(report.state); }
+  void publishSighting(const SightingReport& report) override { sightings.push_back(report); }
 
   std::vector<Stamp> pose_stamps;
+  std::vector<SightingReport> sightings;
   std::vector<MapSnapshot> maps;
   std::vector<RobotState> states;
 };
@@ -93,6 +96,36 @@ TEST(RobotRunnerTest, PublishesMapsAtThePeriodOfTheSampleClockAndAFinalOne) {
   EXPECT_EQ(summary.maps_published, 6u);
   EXPECT_EQ(output.states.front(), RobotState::kRunning);
   EXPECT_EQ(output.states.back(), RobotState::kFinished);
+}
+
+TEST(RobotRunnerTest, EachMapCountsTheSightingsPublishedBeforeIt) {
+  // A sighting of robot2 at 100.45 s and two of robot3 at 102.45 and 102.55 s: the map at
+  // 100.0 s follows none, those at 101.0 and 102.0 s one, the later ones all three.
+  std::deque<Sample> samples = drive(5.0);
+  const auto insertBefore = [&samples](double seconds, const RobotSighting& sighting) {
+    const auto at = std::find_if(samples.begin(), samples.end(), [seconds](const Sample& sample) {
+      return stampOf(sample).seconds() >= seconds;
+    });
+    samples.insert(at, sighting);
+  };
+  insertBefore(100.45, RobotSighting{Stamp::fromSeconds(100.45), "robot2", 2.0, 0.1});
+  insertBefore(102.45, RobotSighting{Stamp::fromSeconds(102.45), "robot3", 3.0, -0.2});
+  insertBefore(102.55, RobotSighting{Stamp::fromSeconds(102.55), "robot3", 3.1, -0.2});
+  VectorSource source(samples);
+  RobotPipeline pipeline(MappingSettings{}, SensorMounting{},
+                         std::make_unique<OdometryEstimator>(DiffDriveParams{}, OdometryNoise{}));
+  RecordingOutput output;
+  RobotRunner runner(RunnerSettings{}, source, pipeline, output);
+  std::atomic<bool> stop{false};
+  runner.run(stop);
+  ASSERT_EQ(output.sightings.size(), 3u);
+  EXPECT_EQ(output.sightings[0].observed_id, "robot2");
+  // Maps at 100.0, 101.0, 102.0, 103.0, 104.0 s and the final one.
+  ASSERT_EQ(output.maps.size(), 6u);
+  const std::vector<std::uint64_t> expected{0, 1, 1, 3, 3, 3};
+  for (std::size_t i = 0; i < output.maps.size(); ++i) {
+    EXPECT_EQ(output.maps[i].sightings_published, expected[i]) << "map " << i;
+  }
 }
 
 TEST(RobotRunnerTest, StopFlagEndsTheRunWithAFinalMap) {

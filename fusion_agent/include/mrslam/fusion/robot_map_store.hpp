@@ -22,6 +22,7 @@ struct RobotMap {
   std::uint64_t sequence = 0;
   std::uint64_t scans_inserted = 0;
   bool is_final = false;
+  std::uint64_t sightings_published = 0;  ///< the robot's sightings written before this map
   bool stale = false;  ///< its agent fell silent (lease ran out): the last map is kept, flagged
   GridMap map;
   std::vector<SE2> trajectory;                       ///< robot poses in its own map frame
@@ -50,6 +51,8 @@ class RobotMapStore {
   /// Robots whose map is flagged stale.
   std::size_t staleCount() const;
   bool isFinal(const std::string& robot_id) const;
+  /// The sightings the robot wrote before its newest map (0 without a map).
+  std::uint64_t sightingsPublished(const std::string& robot_id) const;
 
  private:
   mutable std::mutex mutex_;

@@ -20,6 +20,9 @@ struct MapSnapshot {
   std::uint64_t sequence = 0;
   std::uint64_t scans_inserted = 0;
   bool is_final = false;
+  /// Sightings of other robots handed to the output before this map: a fusion agent that holds
+  /// the final map waits until it holds as many (they travel on another topic, unordered).
+  std::uint64_t sightings_published = 0;
   GridMap map;
   std::vector<SE2> trajectory;  ///< map-frame poses at scans (decimated)
 };
@@ -91,6 +94,7 @@ class RobotRunner {
   RobotPipeline& pipeline_;
   RobotOutput& output_;
   std::uint64_t maps_published_ = 0;
+  std::uint64_t sightings_published_ = 0;  ///< handed to output_.publishSighting
   Stamp last_map_stamp_;
   Stamp last_status_stamp_;
   bool clock_started_ = false;
