@@ -43,15 +43,37 @@ bool sameTransform(const GridTransform& a, const GridTransform& b) {
 SeedMerger::SeedMerger(const SeedMergerSettings& settings)
     : settings_(settings), tables_(settings.similarity) {}
 
-std::shared_ptr<const seed::SearchInputs> SeedMerger::searchInputsOf(const GridMap& from,
-                                                                     const GridMap& to) {
-  if (!last_inputs_.inputs || last_inputs_.from != from || last_inputs_.to != to) {
-    last_inputs_ = {from, to, std::make_shared<const seed::SearchInputs>(searchInputs(from, to))};
+std::shared_ptr<const seed::SearchInputs> SearchInputsCache::find(const GridMap& from,
+                                                                  const GridMap& to) const {
+  for (const Entry& entry : entries_) {
+    if (entry.from == from && entry.to == to) {
+      return entry.inputs;
+    }
   }
-  return last_inputs_.inputs;
+  return nullptr;
 }
 
-seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& to) const {
+void SearchInputsCache::keep(const GridMap& from, const GridMap& to,
+                             std::shared_ptr<const seed::SearchInputs> inputs) {
+  entries_.insert(entries_.begin(), Entry{from, to, std::move(inputs)});
+  if (entries_.size() > pairs_) {
+    entries_.erase(entries_.begin() + static_cast<std::ptrdiff_t>(pairs_), entries_.end());
+  }
+}
+
+std::shared_ptr<const seed::SearchInputs> SeedMerger::searchInputsOf(const GridMap& from,
+                                                                     const GridMap& to) {
+  std::shared_ptr<const seed::SearchInputs> inputs = inputs_cache_->find(from, to);
+  if (!inputs) {
+    const std::shared_ptr<const seed::SearchInputs> reversed = inputs_cache_->find(to, from);
+    inputs = std::make_shared<const seed::SearchInputs>(searchInputs(from, to, reversed.get()));
+    inputs_cache_->keep(from, to, inputs);
+  }
+  return inputs;
+}
+
+seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& to,
+                                            const seed::SearchInputs* reversed) const {
   seed::SearchInputs inputs;
   inputs.all_samples = knownCells(from, tables_);
   inputs.coarse_samples =
@@ -67,7 +89,10 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
   inputs.to = codeImage(to, settings_.translation_window_delta + 2, tables_);
   inputs.entropy_from = mapEntropy(from, tables_);
   inputs.entropy_to = mapEntropy(to, tables_);
-  if (settings_.wall_anchor && settings_.settle_alignment) {
+  if (reversed != nullptr && reversed->walls_from && reversed->walls_to) {
+    inputs.walls_from = reversed->walls_to;  // each map's wall field, built the other way
+    inputs.walls_to = reversed->walls_from;
+  } else if (settings_.wall_anchor && settings_.settle_alignment) {
     inputs.walls_from =
         std::make_shared<WallField>(from, settings_.similarity, settings_.wall_alignment);
     inputs.walls_to =
@@ -135,7 +160,8 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
       pairs, prepared_from, prepared_to, radon_correlation, scorer, settings_);  // blocks 6-7
   lap(clock, timings_.poses);
 
-  const seed::SearchInputs inputs = searchInputs(from, to);  // block 8
+  const std::shared_ptr<const seed::SearchInputs> held = searchInputsOf(from, to);  // block 8
+  const seed::SearchInputs& inputs = *held;
   std::vector<seed::Candidate> candidates =
       seed::searchCandidates(hypotheses, settings_.refined_hypotheses, inputs, tables_, settings_);
   seed::Refined refined = refineBest(candidates, inputs);

@@ -100,6 +100,10 @@ class ChainMerger : public MapMerger {
                        const SeedMergerSettings& judge = {});
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "chain"; }
+  /// The chain's own judge keeps its inputs in `cache` (the steps are handed it by their maker).
+  void shareSearchInputs(const std::shared_ptr<SearchInputsCache>& cache) override {
+    judge_.shareSearchInputs(cache);
+  }
 
  private:
   /// Refuses the accepted `result` when one of the `earlier` refused transforms is its rival.

@@ -63,6 +63,9 @@ class ExhaustiveMerger : public MapMerger {
                             const SeedMergerSettings& judge = {});
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "exhaustive"; }
+  void shareSearchInputs(const std::shared_ptr<SearchInputsCache>& cache) override {
+    judge_.shareSearchInputs(cache);
+  }
 
   /// The search's hypotheses, best first, before they are judged (for tests and tuning).
   std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to) const;

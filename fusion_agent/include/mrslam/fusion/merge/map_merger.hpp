@@ -7,6 +7,7 @@
 // map `to`: p_to = R(theta) * p_from + t.
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -101,12 +102,18 @@ struct MergeResult {
   std::vector<GridTransform> hypotheses;
 };
 
+class SearchInputsCache;
+
 class MapMerger {
  public:
   virtual ~MapMerger() = default;
   /// Finds T_to_from between two maps of the same resolution, with no prior on it.
   virtual MergeResult merge(const GridMap& from, const GridMap& to) = 0;
   virtual std::string name() const = 0;
+  /// A merger judged by the seed pipeline's acceptance keeps that judge's inputs of a pair of
+  /// maps in `cache` (seed_merger.hpp): a chain hands one to its steps and its own judge, all
+  /// built from the same `seed:` settings. The others ignore it.
+  virtual void shareSearchInputs(const std::shared_ptr<SearchInputsCache>& /*cache*/) {}
 };
 
 }  // namespace mrslam::fusion

@@ -248,11 +248,36 @@ struct PlacedFit {
   double structure = 0.0;          ///< the lesser structure agreement of both ways (samples)
 };
 
+/// Block 8's inputs (seed_stages.hpp: samples, code images, wall fields) of the last few pairs of
+/// maps, newest first: a chain judges one pair many times, both ways, by its steps' judges and
+/// by its own. Every SeedMerger that shares one must have the same settings.
+class SearchInputsCache {
+ public:
+  explicit SearchInputsCache(std::size_t pairs = 2) : pairs_(pairs) {}
+  /// The inputs kept for exactly these maps, or null.
+  std::shared_ptr<const seed::SearchInputs> find(const GridMap& from, const GridMap& to) const;
+  /// Keeps `inputs` of the pair (the oldest pair beyond `pairs` is let go).
+  void keep(const GridMap& from, const GridMap& to,
+            std::shared_ptr<const seed::SearchInputs> inputs);
+
+ private:
+  struct Entry {
+    GridMap from;
+    GridMap to;
+    std::shared_ptr<const seed::SearchInputs> inputs;
+  };
+  std::size_t pairs_;
+  std::vector<Entry> entries_;  ///< newest first
+};
+
 class SeedMerger : public MapMerger {
  public:
   explicit SeedMerger(const SeedMergerSettings& settings = {});
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "seed"; }
+  void shareSearchInputs(const std::shared_ptr<SearchInputsCache>& cache) override {
+    inputs_cache_ = cache;
+  }
   const SeedMergeTimings& lastTimings() const { return timings_; }
   const SeedMergerSettings& settings() const { return settings_; }
   /// Blocks 8-9 on hypotheses found by another method (a virtual robot, a rendezvous, a wider
@@ -350,8 +375,10 @@ class SeedMerger : public MapMerger {
   /// Whether they meet with the walls on the other map's frontier left out
   /// (min_structure_off_frontier) where the known cells agree cleanly (min_v_off_frontier).
   bool frontierExcuses(const seed::Refined& refined) const;
-  seed::SearchInputs searchInputs(const GridMap& from, const GridMap& to) const;
-  /// searchInputs() of the last pair of maps asked for, built again only for another pair: a
+  /// Block 8's inputs; `reversed` (may be null): those of (to, from), whose wall fields serve.
+  seed::SearchInputs searchInputs(const GridMap& from, const GridMap& to,
+                                  const seed::SearchInputs* reversed = nullptr) const;
+  /// searchInputs() of a pair held in inputs_cache_, built only for a pair it does not hold: a
   /// chain judges many transforms of one pair in turn (judgeHypotheses, placedFits, ...). The
   /// caller holds what it is given while it uses it.
   std::shared_ptr<const seed::SearchInputs> searchInputsOf(const GridMap& from, const GridMap& to);
@@ -359,12 +386,8 @@ class SeedMerger : public MapMerger {
   const SeedMergerSettings settings_;
   const ComparisonTables tables_;
   SeedMergeTimings timings_;
-  struct InputsOfPair {
-    GridMap from;
-    GridMap to;
-    std::shared_ptr<const seed::SearchInputs> inputs;
-  };
-  InputsOfPair last_inputs_;  ///< what searchInputsOf() returns for the same maps again
+  /// What searchInputsOf() returns for the same maps again (its own, or a chain's).
+  std::shared_ptr<SearchInputsCache> inputs_cache_ = std::make_shared<SearchInputsCache>();
 };
 
 /// The result of a merger whose hypotheses (`found`) are judged by `judge`'s acceptance

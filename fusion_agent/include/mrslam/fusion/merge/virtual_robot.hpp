@@ -64,6 +64,9 @@ class VirtualRobotMerger : public MapMerger {
       : settings_(settings), judge_(judge) {}
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "virtual"; }
+  void shareSearchInputs(const std::shared_ptr<SearchInputsCache>& cache) override {
+    judge_.shareSearchInputs(cache);
+  }
 
   /// The hypotheses T_to_from of every walk, before verification (for tests and tuning).
   std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to) const;
