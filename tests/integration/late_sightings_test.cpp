@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "agent_processes.hpp"
+#include "map_window.hpp"
 #include "mrslam/common/map_loaders.hpp"
 #include "mrslam/dds/convert.hpp"
 #include "mrslam/dds/participant.hpp"
@@ -24,20 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kResolutionM = 0.05;
-
-GridMap crop(const GridMap& source, int x0, int y0, int size) {
-  GridGeometry geometry;
-  geometry.resolution_m = kResolutionM;
-  geometry.width = size;
-  geometry.height = size;
-  GridMap map(geometry, GridMap::kUnknown);
-  for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) {
-      map.at(x, y) = source.at(x0 + x, y0 + y);
-    }
-  }
-  return map;
-}
 
 msg::LocalMap finalMap(const std::string& robot, const GridMap& grid, std::uint64_t sightings) {
   msg::LocalMap map;
@@ -98,8 +85,8 @@ class LateSightingsTest : public ::testing::Test {
     ASSERT_TRUE(dds::waitForReaders(sighting_writer, 1, 30.0)) << logOf(*fusion);
 
     const GridMap intel = loadMapFile(sharedDataPath("maps/freiburg-intel.pgm"));
-    msg::LocalMap map1 = finalMap("robot1", crop(intel, 250, 250, 300), 1);
-    msg::LocalMap map2 = finalMap("robot2", crop(intel, 330, 300, 300), 1);
+    msg::LocalMap map1 = finalMap("robot1", cropWindow(intel, 250, 250, 300), 1);
+    msg::LocalMap map2 = finalMap("robot2", cropWindow(intel, 330, 300, 300), 1);
     ASSERT_TRUE(map_writer->write(&map1));
     ASSERT_TRUE(map_writer->write(&map2));
     ASSERT_TRUE(waitForLog(out_ / "fusion.log", "first map of robot2 received", 1, 30.0))

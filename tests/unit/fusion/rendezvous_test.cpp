@@ -7,6 +7,7 @@
 
 #include <random>
 
+#include "map_window.hpp"
 #include "merge_test_maps.hpp"
 #include "test_data.hpp"
 
@@ -101,25 +102,11 @@ struct CropPair {
   SE2 T_a_b;  ///< pose of b's map frame in a's
 };
 
-GridMap crop(const GridMap& source, int x0, int y0, int size) {
-  GridGeometry geometry;
-  geometry.resolution_m = 0.05;
-  geometry.width = size;
-  geometry.height = size;
-  GridMap map(geometry, GridMap::kUnknown);
-  for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) {
-      map.at(x, y) = source.at(x0 + x, y0 + y);
-    }
-  }
-  return map;
-}
-
 CropPair intelCrops() {
   const GridMap source = merge_test::loadMap(test::sharedDataPath("maps/freiburg-intel.pgm"));
   CropPair pair;
-  pair.a = crop(source, 250, 250, 300);
-  pair.b = crop(source, 330, 300, 300);
+  pair.a = test::cropWindow(source, 250, 250, 300);
+  pair.b = test::cropWindow(source, 330, 300, 300);
   pair.T_a_b = SE2(80 * 0.05, 50 * 0.05, 0.0);
   return pair;
 }
