@@ -75,11 +75,10 @@ class FusionNode : public eprosima::fastdds::dds::DataReaderListener {
   eprosima::fastdds::dds::DataWriter* transforms_writer_ = nullptr;
   eprosima::fastdds::dds::DataWriter* status_writer_ = nullptr;
   std::atomic<std::uint64_t> maps_received_{0};
-  eprosima::fastdds::dds::DataWriter* ros_map_writer_ = nullptr;
-  std::mutex writers_mutex_;
+  eprosima::fastdds::dds::DataWriter* ros_map_writer_ = nullptr;  ///< rt/map, when configured
+  std::mutex writers_mutex_;  ///< guards the two maps below (listener and liveliness callbacks)
   std::map<std::string, eprosima::fastrtps::rtps::InstanceHandle_t> writer_of_robot_;
-  std::map<eprosima::fastrtps::rtps::InstanceHandle_t, std::string>
-      robot_of_writer_;  ///< rt/map, when configured
+  std::map<eprosima::fastrtps::rtps::InstanceHandle_t, std::string> robot_of_writer_;
 };
 
 }  // namespace mrslam::fusion

@@ -29,8 +29,8 @@ class RobotNode : public RobotOutput {
   eprosima::fastdds::dds::DataWriter* pose_writer_;
   eprosima::fastdds::dds::DataWriter* map_writer_;
   eprosima::fastdds::dds::DataWriter* status_writer_;
-  eprosima::fastdds::dds::DataWriter* ros_pose_writer_;
-  eprosima::fastdds::dds::DataWriter* sighting_writer_;  ///< rt/<robot>/pose for ROS 2 tools
+  eprosima::fastdds::dds::DataWriter* ros_pose_writer_;  ///< rt/<robot>/pose for ROS 2 tools
+  eprosima::fastdds::dds::DataWriter* sighting_writer_;  ///< mrslam/rendezvous
   std::uint64_t pose_sequence_ = 0;
   msg::LocalMap map_message_;  ///< reused: maps are large
 };
