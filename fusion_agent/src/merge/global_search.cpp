@@ -5,6 +5,8 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
+#include "mrslam/fusion/merge/padded_spectrum.hpp"
+
 namespace mrslam::fusion {
 
 namespace {
@@ -33,14 +35,6 @@ CoarseMap coarsen(const GridMap& map, int coarse, const SimilaritySettings& clas
   result.free.setTo(0.0f, result.occupied > 0.5f);  // free only where no wall is
   cv::threshold(result.occupied, result.occupied, 0.5, 1.0, cv::THRESH_BINARY);
   cv::threshold(result.free, result.free, 0.5, 1.0, cv::THRESH_BINARY);
-  return result;
-}
-
-cv::Mat spectrum(const cv::Mat& image, cv::Size size) {
-  cv::Mat padded(size, CV_32F, cv::Scalar(0.0f));
-  image.copyTo(padded(cv::Rect(0, 0, image.cols, image.rows)));
-  cv::Mat result;
-  cv::dft(padded, result);
   return result;
 }
 
@@ -163,10 +157,10 @@ std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& t
   const cv::Size size(cv::getOptimalDFTSize(coarse_to.occupied.cols + turn.canvas),
                       cv::getOptimalDFTSize(coarse_to.occupied.rows + turn.canvas));
   const float w = static_cast<float>(settings.free_weight);
-  const cv::Mat target_weights = spectrum(coarse_to.occupied - w * coarse_to.free, size);
-  const cv::Mat target_walls = spectrum(coarse_to.occupied, size);
+  const cv::Mat target_weights = paddedSpectrum(coarse_to.occupied - w * coarse_to.free, size);
+  const cv::Mat target_walls = paddedSpectrum(coarse_to.occupied, size);
   const bool by_free = settings.free_agreement_hypotheses > 0;
-  const cv::Mat target_free = by_free ? spectrum(coarse_to.free, size) : cv::Mat();
+  const cv::Mat target_free = by_free ? paddedSpectrum(coarse_to.free, size) : cv::Mat();
 
   const int rotations =
       std::max(1, static_cast<int>(std::lround(2.0 * M_PI / settings.rotation_step_rad)));
@@ -189,8 +183,8 @@ std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& t
     const cv::Mat matrix = turn.matrix(theta);
     cv::warpAffine(coarse_from.occupied, turned_walls, matrix, canvas, cv::INTER_LINEAR);
     cv::warpAffine(coarse_from.free, turned_free, matrix, canvas, cv::INTER_LINEAR);
-    free_spectrum = spectrum(turned_free, size);
-    cv::mulSpectrums(target_weights, spectrum(turned_walls, size), on_walls, 0, true);
+    free_spectrum = paddedSpectrum(turned_free, size);
+    cv::mulSpectrums(target_weights, paddedSpectrum(turned_walls, size), on_walls, 0, true);
     cv::mulSpectrums(target_walls, free_spectrum, on_free, 0, true);
     cv::idft(on_walls - w * on_free, scores, cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
     if (by_free) {

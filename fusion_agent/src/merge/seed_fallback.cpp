@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "mrslam/fusion/merge/padded_spectrum.hpp"
 #include "seed_stages.hpp"
 
 namespace mrslam::fusion::seed {
@@ -81,27 +82,20 @@ class TargetCorrelator {
     const cv::Size size(cv::getOptimalDFTSize(target_.cols + source.cols),
                         cv::getOptimalDFTSize(target_.rows + source.rows));
     cv::Mat product;
-    cv::mulSpectrums(spectrumOfTarget(size), spectrum(source, size), product, 0, true);
+    cv::mulSpectrums(spectrumOfTarget(size), paddedSpectrum(source, size), product, 0, true);
     cv::Mat correlation;
     cv::idft(product, correlation, cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
     return correlation;
   }
 
  private:
-  static cv::Mat spectrum(const cv::Mat& image, const cv::Size& size) {
-    cv::Mat padded(size, CV_32F, cv::Scalar(0.0f));
-    image.copyTo(padded(cv::Rect(0, 0, image.cols, image.rows)));
-    cv::Mat result;
-    cv::dft(padded, result);
-    return result;
-  }
   const cv::Mat& spectrumOfTarget(const cv::Size& size) {
     for (const auto& [at, kept] : target_spectra_) {
       if (at == size) {
         return kept;
       }
     }
-    target_spectra_.emplace_back(size, spectrum(target_, size));
+    target_spectra_.emplace_back(size, paddedSpectrum(target_, size));
     return target_spectra_.back().second;
   }
 

@@ -8,6 +8,7 @@
 #include "merge_crop_pairs.hpp"
 #include "merge_test_maps.hpp"
 #include "mrslam/fusion/merge/global_search.hpp"
+#include "mrslam/fusion/merge/padded_spectrum.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
 #include "test_data.hpp"
 
@@ -28,6 +29,30 @@ bool truthAmong(const std::vector<GlobalHypothesis>& hypotheses, const merge_tes
     }
   }
   return false;
+}
+
+TEST(MergeGlobalSearchTest, APaddedSpectrumLeavesThePaddingRowsOutAndStaysTheSame) {
+  // Random images of the sizes the sweep pads (odd sides, padded to DFT-friendly ones): the
+  // spectrum with the padding rows left out of the first pass equals the full DFT bit for bit.
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> value(-1.0f, 1.0f);
+  for (const auto& [image_size, padded_size] :
+       {std::pair{cv::Size(37, 23), cv::Size(64, 48)},
+        std::pair{cv::Size(101, 143), cv::Size(250, 243)}}) {
+    cv::Mat image(image_size, CV_32F);
+    for (int y = 0; y < image.rows; ++y) {
+      for (int x = 0; x < image.cols; ++x) {
+        image.at<float>(y, x) = value(random);
+      }
+    }
+    cv::Mat padded(padded_size, CV_32F, cv::Scalar(0.0f));
+    image.copyTo(padded(cv::Rect(cv::Point(0, 0), image_size)));
+    cv::Mat full;
+    cv::dft(padded, full);
+    const cv::Mat spectrum = paddedSpectrum(image, padded_size);
+    ASSERT_EQ(spectrum.size(), full.size());
+    EXPECT_EQ(cv::norm(spectrum, full, cv::NORM_INF), 0.0) << image_size << " in " << padded_size;
+  }
 }
 
 TEST(MergeGlobalSearchTest, FindsAKnownTurnAndShiftOfARealCrop) {
