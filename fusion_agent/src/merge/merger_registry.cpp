@@ -34,14 +34,10 @@ std::unique_ptr<MapMerger> makeChain(const Config& chain, const Config* methods)
   }
   const SeedMergerSettings judge =
       methods != nullptr ? loadSeedMergerSettings(methods->section("seed")) : SeedMergerSettings{};
+  auto merger = std::make_unique<ChainMerger>(std::move(steps), loadChainSettings(chain), judge);
   // Every step's judge and the chain's have the `seed:` settings (or all the defaults): one pair's
   // search inputs, built once each way, serve them all.
-  const auto inputs = std::make_shared<SearchInputsCache>();
-  for (const auto& step : steps) {
-    step->shareSearchInputs(inputs);
-  }
-  auto merger = std::make_unique<ChainMerger>(std::move(steps), loadChainSettings(chain), judge);
-  merger->shareSearchInputs(inputs);
+  merger->shareSearchInputs(std::make_shared<SearchInputsCache>());
   return merger;
 }
 

@@ -14,12 +14,12 @@ namespace {
 using merge_test::CropPair;
 using merge_test::TwoBuildings;
 
-/// The default chain, every judge of it building its inputs again at every call.
+/// The default chain, every judge of it building its inputs again at every call (the cache it
+/// hands its judge and steps holds no pair).
 std::unique_ptr<MapMerger> chainBuildingEveryInput() {
   std::vector<std::unique_ptr<MapMerger>> steps;
   for (const std::string& name : parseChainSteps(kDefaultChainSteps)) {
     steps.push_back(makeMerger(name));
-    steps.back()->shareSearchInputs(std::make_shared<SearchInputsCache>(0));
   }
   auto chain = std::make_unique<ChainMerger>(
       std::move(steps), loadChainSettings(Config::loadString("{}", "chain.yaml")),

@@ -100,9 +100,13 @@ class ChainMerger : public MapMerger {
                        const SeedMergerSettings& judge = {});
   MergeResult merge(const GridMap& from, const GridMap& to) override;
   std::string name() const override { return "chain"; }
-  /// The chain's own judge keeps its inputs in `cache` (the steps are handed it by their maker).
+  /// The chain's own judge and every step keep their inputs in `cache`: for a chain whose
+  /// steps are judged with its judge's settings (merger_registry.cpp builds them so).
   void shareSearchInputs(const std::shared_ptr<SearchInputsCache>& cache) override {
     judge_.shareSearchInputs(cache);
+    for (const auto& step : steps_) {
+      step->shareSearchInputs(cache);
+    }
   }
 
  private:
