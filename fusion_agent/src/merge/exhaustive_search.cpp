@@ -112,14 +112,20 @@ PointSet pointSet(const SearchGrid& grid, const ExhaustiveSearchSettings& settin
   return set;
 }
 
-/// Step 1 and the bounds of step 4: the value grid of `to` padded by `pad` grid cells of
-/// unknown on every side, and its max-pooled versions.
+/// Step 1 and the bounds of step 4: the value grid of `to` padded with unknown cells, and its
+/// max-pooled versions. Padded by `pad` columns left and right and `row_pad` rows above and below:
+/// `pad` too when the search sums every point; 2^(depth+1) when it leaves out the points whose
+/// rows hold no values (offsetsOnRows), as the rows it reads then lie that near the grid's.
 struct ValuePyramid {
-  int pad = 0;
+  int pad = 0;      ///< columns of padding on each side
+  int row_pad = 0;  ///< rows of padding on each side
   int stride = 0;
   int rows = 0;
   std::vector<std::vector<float>> walls;  ///< level h: max over 2^h × 2^h windows (low corner)
   std::vector<std::vector<float>> free;   ///< the same for `from`'s free cells
+  /// Level h is 0 on every row outside [first_valued_row[h], last_valued_row] (both grids).
+  std::vector<int> first_valued_row;
+  int last_valued_row = 0;
 };
 
 cv::Mat distanceToWalls(const SearchGrid& grid) {
@@ -135,13 +141,13 @@ cv::Mat distanceToWalls(const SearchGrid& grid) {
 }
 
 /// What a free cell of `from` scores on each cell of `to`.
-std::vector<float> freeValueGrid(const SearchGrid& grid, int pad, int stride, int rows,
+std::vector<float> freeValueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
                                  const ExhaustiveSearchSettings& settings) {
   std::vector<float> values(static_cast<std::size_t>(stride) * rows, 0.0f);
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
       const GridClass cell = grid.at(x, y);
-      values[static_cast<std::size_t>(y + pad) * stride + static_cast<std::size_t>(x + pad)] =
+      values[static_cast<std::size_t>(y + row_pad) * stride + static_cast<std::size_t>(x + pad)] =
           cell == GridClass::kFree
               ? static_cast<float>(settings.free_weight)
               : (cell == GridClass::kWall ? -static_cast<float>(settings.conflict_penalty) : 0.0f);
@@ -151,7 +157,7 @@ std::vector<float> freeValueGrid(const SearchGrid& grid, int pad, int stride, in
 }
 
 /// What a wall of `from` scores on each cell of `to`.
-std::vector<float> valueGrid(const SearchGrid& grid, int pad, int stride, int rows,
+std::vector<float> valueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
                              const ExhaustiveSearchSettings& settings) {
   const cv::Mat distance = distanceToWalls(grid);
   std::vector<float> values(static_cast<std::size_t>(stride) * rows, 0.0f);
@@ -165,7 +171,7 @@ std::vector<float> valueGrid(const SearchGrid& grid, int pad, int stride, int ro
       } else if (grid.at(x, y) == GridClass::kFree) {
         value = -static_cast<float>(settings.free_penalty);
       }
-      values[static_cast<std::size_t>(y + pad) * stride + static_cast<std::size_t>(x + pad)] =
+      values[static_cast<std::size_t>(y + row_pad) * stride + static_cast<std::size_t>(x + pad)] =
           value;
     }
   }
@@ -212,28 +218,35 @@ ValuePyramid valuePyramid(const SearchGrid& grid, int pad,
                           const ExhaustiveSearchSettings& settings) {
   ValuePyramid pyramid;
   pyramid.pad = pad;
+  pyramid.row_pad = settings.stop_early ? std::min(pad, 2 << settings.depth) : pad;
   pyramid.stride = grid.width + 2 * pad;
-  pyramid.rows = grid.height + 2 * pad;
-  pyramid.walls.push_back(valueGrid(grid, pad, pyramid.stride, pyramid.rows, settings));
-  pyramid.free.push_back(freeValueGrid(grid, pad, pyramid.stride, pyramid.rows, settings));
-  ValuedArea walls{pad, pad + grid.width, pad, pad + grid.height};
+  pyramid.rows = grid.height + 2 * pyramid.row_pad;
+  const int row_pad = pyramid.row_pad;
+  pyramid.walls.push_back(valueGrid(grid, pad, row_pad, pyramid.stride, pyramid.rows, settings));
+  pyramid.free.push_back(freeValueGrid(grid, pad, row_pad, pyramid.stride, pyramid.rows, settings));
+  ValuedArea walls{pad, pad + grid.width, row_pad, row_pad + grid.height};
   ValuedArea free = walls;
+  pyramid.first_valued_row.push_back(walls.y_begin);
+  pyramid.last_valued_row = walls.y_end - 1;
   for (int h = 1; h <= settings.depth; ++h) {
     pyramid.walls.push_back(
         maxPooled(pyramid.walls.back(), pyramid.stride, pyramid.rows, 1 << (h - 1), walls));
     pyramid.free.push_back(
         maxPooled(pyramid.free.back(), pyramid.stride, pyramid.rows, 1 << (h - 1), free));
+    pyramid.first_valued_row.push_back(walls.y_begin);
   }
   return pyramid;
 }
 
-/// Step 3: one rotation's turned points as offsets into the pyramid's rows.
+/// Step 3: one rotation's turned points as offsets into the pyramid's rows, in memory order.
 struct Rotation {
   double theta = 0.0;
   std::vector<std::ptrdiff_t> walls;
   std::vector<std::ptrdiff_t> free;
 };
 
+/// In memory order, so that the points on a range of rows are a range of the offsets: every
+/// |column offset| is below half the stride (the pad exceeds the points' radius).
 std::vector<std::ptrdiff_t> turnedOffsets(const std::vector<Eigen::Vector2d>& points, double theta,
                                           int stride) {
   const double c = std::cos(theta);
@@ -245,7 +258,18 @@ std::vector<std::ptrdiff_t> turnedOffsets(const std::vector<Eigen::Vector2d>& po
     const auto y = static_cast<std::ptrdiff_t>(std::lround(s * p.x() + c * p.y()));
     offsets.push_back(y * stride + x);
   }
+  std::sort(offsets.begin(), offsets.end());
   return offsets;
+}
+
+/// The offsets (sorted) of the points whose row offset lies within [first_row, last_row].
+std::pair<const std::ptrdiff_t*, const std::ptrdiff_t*> offsetsOnRows(
+    const std::vector<std::ptrdiff_t>& offsets, std::ptrdiff_t first_row, std::ptrdiff_t last_row,
+    std::ptrdiff_t stride) {
+  const std::ptrdiff_t half = stride / 2;
+  const auto begin = std::lower_bound(offsets.begin(), offsets.end(), first_row * stride - half);
+  const auto end = std::lower_bound(begin, offsets.end(), last_row * stride + half + 1);
+  return {offsets.data() + (begin - offsets.begin()), offsets.data() + (end - offsets.begin())};
 }
 
 /// Whether `theta` lies within `window` of one of `turns` (always, when there are none).
@@ -364,21 +388,23 @@ constexpr std::size_t kBoundChunk = 32;
 constexpr float kPruneMargin = 1e-3f;
 
 /// A node's bound is the sum of the pyramid's values at its corner plus each point's offset;
-/// this sums four corners at once: base, base + right, base + up, base + right + up, starting
-/// from `sums`. It stops early, returning false, once each of the four sums plus `cap` per point
-/// left and `after` is at most `threshold` (`sums` then hold those caps: still upper bounds).
-bool sumAtFour(const float* base, std::ptrdiff_t right, std::ptrdiff_t up,
-               const std::vector<std::ptrdiff_t>& offsets, float cap, float after, float threshold,
-               float* sums) {
+/// this sums four corners at once: corner, corner + right, corner + up, corner + right + up
+/// (indices into `values`), starting from `sums`. It stops early, returning false, once each of the
+/// four sums plus `cap` per point left and `after` is at most `threshold` (`sums` then hold those
+/// caps: still upper bounds).
+bool sumAtFour(const float* values, std::ptrdiff_t corner, std::ptrdiff_t right, std::ptrdiff_t up,
+               std::pair<const std::ptrdiff_t*, const std::ptrdiff_t*> offsets, float cap,
+               float after, float threshold, float* sums) {
   float sum0 = sums[0];
   float sum1 = sums[1];
   float sum2 = sums[2];
   float sum3 = sums[3];
-  const std::size_t count = offsets.size();
+  const std::ptrdiff_t* const first = offsets.first;
+  const auto count = static_cast<std::size_t>(offsets.second - offsets.first);
   for (std::size_t begin = 0; begin < count; begin += kBoundChunk) {
     const std::size_t end = std::min(count, begin + kBoundChunk);
     for (std::size_t i = begin; i < end; ++i) {
-      const float* at = base + offsets[i];
+      const float* at = values + (corner + first[i]);
       sum0 += at[0];
       sum1 += at[right];
       sum2 += at[up];
@@ -443,20 +469,28 @@ class BranchAndBound {
   /// pass over the points. False when each is sure to be at most `threshold`: the pass stopped
   /// early and `bounds` hold upper bounds at most `threshold` (the children would be pruned).
   bool childBounds(const Node& node, int half, double threshold, double* bounds) const {
-    const std::ptrdiff_t corner =
-        static_cast<std::ptrdiff_t>(node.ty + pyramid_.pad) * pyramid_.stride +
-        (node.tx + pyramid_.pad);
+    const std::ptrdiff_t row = node.ty + pyramid_.row_pad;
+    const std::ptrdiff_t corner = row * pyramid_.stride + (node.tx + pyramid_.pad);
     const std::ptrdiff_t up = static_cast<std::ptrdiff_t>(half) * pyramid_.stride;
     const Rotation& turned = rotations_[static_cast<std::size_t>(node.rotation)];
     const auto h = static_cast<std::size_t>(node.level - 1);
     const auto limit =
         stop_early_ ? static_cast<float>(threshold) : -std::numeric_limits<float>::infinity();
-    const float free_cap = caps_.free * static_cast<float>(turned.free.size());
+    // Only the points whose rows (or rows + half) hold values of level h add anything.
+    const std::ptrdiff_t first_row = pyramid_.first_valued_row[h] - row - half;
+    const std::ptrdiff_t last_row = pyramid_.last_valued_row - row;
+    const auto onRows = [&](const std::vector<std::ptrdiff_t>& offsets) {
+      return stop_early_ ? offsetsOnRows(offsets, first_row, last_row, pyramid_.stride)
+                         : std::make_pair(offsets.data(), offsets.data() + offsets.size());
+    };
+    const auto walls = onRows(turned.walls);
+    const auto free = onRows(turned.free);
+    const float free_cap = caps_.free * static_cast<float>(free.second - free.first);
     float sums[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    const bool open = sumAtFour(pyramid_.walls[h].data() + corner, half, up, turned.walls,
-                                caps_.wall, free_cap, limit, sums) &&
-                      sumAtFour(pyramid_.free[h].data() + corner, half, up, turned.free, caps_.free,
-                                0.0f, limit, sums);
+    const bool open =
+        sumAtFour(pyramid_.walls[h].data(), corner, half, up, walls, caps_.wall, free_cap, limit,
+                  sums) &&
+        sumAtFour(pyramid_.free[h].data(), corner, half, up, free, caps_.free, 0.0f, limit, sums);
     for (int i = 0; i < 4; ++i) {
       bounds[i] = static_cast<double>(sums[i]);
     }
@@ -556,8 +590,8 @@ class FineScorer {
     fine.wall_sigma *= cell_size;
     fine.wall_reach *= cell_size;
     fine.free_margin = std::max(1, settings.free_margin * cell_size);
-    walls_ = valueGrid(grid_to_, 0, grid_to_.width, grid_to_.height, fine);
-    free_ = freeValueGrid(grid_to_, 0, grid_to_.width, grid_to_.height, fine);
+    walls_ = valueGrid(grid_to_, 0, 0, grid_to_.width, grid_to_.height, fine);
+    free_ = freeValueGrid(grid_to_, 0, 0, grid_to_.width, grid_to_.height, fine);
     points_ = pointSet(from, fine);
   }
 

@@ -133,6 +133,17 @@ TEST(ExhaustiveSearchTest, BranchAndBoundKeepsWhatScoringEveryTranslationKeeps) 
     SCOPED_TRACE("near the walls' turns only");
     expectTheSameAsEveryLeafScored(merge_case, near_turns);
   }
+  // The search leaves out the points that land on rows holding no values: with known cells on
+  // the first and last rows of `to` (an unturned crop without padding), none of those may be left
+  // out.
+  const CropPair to_the_edges = {"freiburg-intel.pgm",
+                                 0,
+                                 {{400, 500}, 170, 0.4, {6, 2}, {3, 9}},
+                                 {{450, 540}, 170, 0.0, {0, 0}, {0, 0}}};
+  {
+    SCOPED_TRACE("known cells on the edge rows");
+    expectTheSameAsEveryLeafScored(cut(to_the_edges), many);
+  }
 }
 
 TEST(ExhaustiveSearchTest, TheTruthOfLowOverlapCropsIsAmongTheHypotheses) {

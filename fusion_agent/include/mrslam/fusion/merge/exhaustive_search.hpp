@@ -67,8 +67,9 @@ struct ExhaustiveSearchSettings {
   double conflict_penalty = 6.0;     ///< cost of a free cell of `from` on `to`'s walls
   int free_margin = 1;               ///< free cells of `from` this near its walls are not scored
   int depth = 5;                     ///< the coarsest node covers 2^depth translations a side
-  bool stop_early = true;            ///< stop a node's sums once it cannot beat the bar (false:
-                                     ///< every point summed, the same result; tests and bench)
+  bool stop_early = true;            ///< stop a node's sums once it cannot beat the bar, and
+                                     ///< leave out the points on rows of no values (false: every
+                                     ///< point summed, the same result; tests and bench)
   int search_hypotheses = 16;        ///< best distinct leaves kept by each way's search
   bool both_ways = true;             ///< search `to` onto `from` too
   int hypotheses = 16;               ///< best distinct transforms returned (by the score both ways)
