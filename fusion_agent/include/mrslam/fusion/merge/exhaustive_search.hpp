@@ -34,6 +34,9 @@
 //    or `min_best_share` of the best leaf. A node's points are summed in chunks, and the sum
 //    stops once the points left (each at most its best value: a wall on a wall, a free cell on
 //    a free cell) cannot lift any of its children above that bar: they would be cut anyway.
+//    Points that land on rows of the pooled grid holding no values (0 above and below `to`) are
+//    left out of the sum: each rotation's points are in row order, so those on the rows that
+//    count are one range of them.
 // 5. The best leaves, no two alike (within `distinct_cells` cells at `from`'s centroid and
 //    `distinct_deg` degrees): the better of two alike ones is kept.
 // 6. Each leaf refined at full resolution (one grid cell a map cell; σ, reach and margin scaled
