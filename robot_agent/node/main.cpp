@@ -120,10 +120,13 @@ int runRobot(const Options& options, const RobotConfig& config) {
   }
   writeOutputs(options, *pipeline, config);
   if (node && config.delivery_readers > 0) {
-    spdlog::info("{}: waiting up to {} s for {} fusion agent(s) to hold the final map",
-                 config.robot_id, config.delivery_timeout_s, config.delivery_readers);
-    if (!node->waitForMapDelivery(config.delivery_readers, config.delivery_timeout_s)) {
-      spdlog::warn("{}: fewer than {} fusion agent(s) took the final map within {} s",
+    spdlog::info(
+        "{}: waiting up to {} s for {} fusion agent(s) to hold the final map and the {} "
+        "sightings written",
+        config.robot_id, config.delivery_timeout_s, config.delivery_readers,
+        node->sightingsWritten());
+    if (!node->waitForDelivery(config.delivery_readers, config.delivery_timeout_s)) {
+      spdlog::warn("{}: fewer than {} fusion agent(s) took the final map and sightings within {} s",
                    config.robot_id, config.delivery_readers, config.delivery_timeout_s);
       return 3;
     }

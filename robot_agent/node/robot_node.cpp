@@ -2,7 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
+#include <vector>
 
 #include "mrslam/dds/convert.hpp"
 #include "mrslam/dds/ros2_convert.hpp"
@@ -82,6 +84,7 @@ void RobotNode::publishSighting(const SightingReport& report) {
     }
   }
   sighting_writer_->write(&message);
+  ++sightings_written_;
 }
 
 void RobotNode::publishMap(const MapSnapshot& snapshot) {
@@ -128,17 +131,39 @@ void RobotNode::publishStatus(const StatusReport& report) {
   status_writer_->write(&message);
 }
 
-bool RobotNode::waitForMapDelivery(int readers, double timeout_s) {
+namespace {
+
+eprosima::fastrtps::Duration_t durationOf(double seconds) {
+  const auto whole = static_cast<std::int32_t>(seconds);
+  return {whole, static_cast<std::uint32_t>((seconds - whole) * 1e9)};
+}
+
+}  // namespace
+
+bool RobotNode::waitForDelivery(int readers, double timeout_s) {
   const auto start = std::chrono::steady_clock::now();
-  if (!dds::waitForReaders(map_writer_, readers, timeout_s)) {
-    return false;
+  const auto secondsLeft = [&] {
+    const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+    return std::max(0.0, timeout_s - elapsed.count());
+  };
+  // The sightings go to the same fusion agents on a topic of their own, whose readers match apart
+  // from the map readers: a robot that left once its final map was taken could leave before the
+  // fusion agent's sighting reader matched, and its sightings were lost.
+  std::vector<eprosima::fastdds::dds::DataWriter*> writers{map_writer_};
+  if (sightings_written_ > 0) {
+    writers.push_back(sighting_writer_);
   }
-  const double elapsed_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const double left_s = std::max(0.0, timeout_s - elapsed_s);
-  const auto seconds = static_cast<std::int32_t>(left_s);
-  const auto nanoseconds = static_cast<std::uint32_t>((left_s - seconds) * 1e9);
-  return map_writer_->wait_for_acknowledgments({seconds, nanoseconds}) == ReturnCode_t::RETCODE_OK;
+  for (eprosima::fastdds::dds::DataWriter* writer : writers) {
+    if (!dds::waitForReaders(writer, readers, secondsLeft())) {
+      return false;
+    }
+  }
+  for (eprosima::fastdds::dds::DataWriter* writer : writers) {
+    if (writer->wait_for_acknowledgments(durationOf(secondsLeft())) != ReturnCode_t::RETCODE_OK) {
+      return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace mrslam::robot
