@@ -254,8 +254,8 @@ std::vector<std::ptrdiff_t> turnedOffsets(const std::vector<Eigen::Vector2d>& po
   std::vector<std::ptrdiff_t> offsets;
   offsets.reserve(points.size());
   for (const Eigen::Vector2d& p : points) {
-    const auto x = static_cast<std::ptrdiff_t>(std::lround(c * p.x() - s * p.y()));
-    const auto y = static_cast<std::ptrdiff_t>(std::lround(s * p.x() + c * p.y()));
+    const std::ptrdiff_t x = roundToInt(c * p.x() - s * p.y());
+    const std::ptrdiff_t y = roundToInt(s * p.x() + c * p.y());
     offsets.push_back(y * stride + x);
   }
   std::sort(offsets.begin(), offsets.end());
@@ -616,8 +616,8 @@ class FineScorer {
     double total = 0.0;
     for (const Eigen::Vector2d& point : points) {
       const Eigen::Vector2d p = point + points_.centroid;
-      const long x = std::lround(c * p.x() - s * p.y() + T_to_from.t_cells.x());
-      const long y = std::lround(s * p.x() + c * p.y() + T_to_from.t_cells.y());
+      const int x = roundToInt(c * p.x() - s * p.y() + T_to_from.t_cells.x());
+      const int y = roundToInt(s * p.x() + c * p.y() + T_to_from.t_cells.y());
       if (x >= 0 && y >= 0 && x < grid_to_.width && y < grid_to_.height) {
         total += values[static_cast<std::size_t>(y) * grid_to_.width + static_cast<std::size_t>(x)];
       }

@@ -229,5 +229,38 @@ TEST(MergeSimilarityTest, CompareAtEqualsOneSampleAtATime) {
   }
 }
 
+// The search's rounding is std::lround's (halves away from zero), bit for bit, without the call.
+TEST(MergeSimilarityTest, RoundToIntRoundsAsLround) {
+  std::vector<double> values = {0.0,
+                                -0.0,
+                                0.5,
+                                -0.5,
+                                1.5,
+                                -1.5,
+                                2.5,
+                                -2.5,
+                                0.49999999999999994,
+                                -0.49999999999999994,
+                                1e9 + 0.5,
+                                -1e9 - 0.5};
+  for (int k = -1000; k <= 1000; ++k) {
+    const double half = k + 0.5;
+    values.insert(values.end(), {half, std::nextafter(half, -1e18), std::nextafter(half, 1e18),
+                                 static_cast<double>(k)});
+  }
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> any(-5e8, 5e8);
+  for (int i = 0; i < 100000; ++i) {
+    values.push_back(any(random));
+    values.push_back(any(random) * 1e-6);
+  }
+  for (const double v : values) {
+    ASSERT_EQ(roundToInt(v), std::lround(v)) << std::hexfloat << v;
+  }
+  EXPECT_EQ(roundToInt(std::nan("")), std::numeric_limits<int>::min()) << "off every grid";
+  EXPECT_EQ(roundToInt(3e9), std::numeric_limits<int>::min());
+  EXPECT_EQ(roundToInt(-3e9), std::numeric_limits<int>::min());
+}
+
 }  // namespace
 }  // namespace mrslam::fusion

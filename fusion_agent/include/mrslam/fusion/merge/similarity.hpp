@@ -82,6 +82,18 @@ inline int floorToInt(double v) {
   return v < truncated ? truncated - 1 : truncated;
 }
 
+/// std::lround(v) (halves away from zero) for |v| < 2^30, without a call into libm: v minus its
+/// truncation is exact, so the comparison with one half is too. Anything else (NaN included)
+/// gives INT_MIN, a cell off every grid.
+inline int roundToInt(double v) {
+  if (!(std::abs(v) < 1073741824.0)) {
+    return std::numeric_limits<int>::min();
+  }
+  const int truncated = static_cast<int>(v);
+  const double fraction = v - static_cast<double>(truncated);
+  return fraction >= 0.5 ? truncated + 1 : (fraction <= -0.5 ? truncated - 1 : truncated);
+}
+
 /// The cell (column, row) where a cell of `from` lands in `to` under T_to_from: floor(T p + 0.5)
 /// in each coordinate, as every placement of samples rounds. Cells taken row by row reuse the
 /// products of their row.
