@@ -124,8 +124,9 @@ int runRobot(const Options& options, const RobotConfig& config) {
         "{}: waiting up to {} s for {} fusion agent(s) to hold the final map and the {} "
         "sightings written",
         config.robot_id, config.delivery_timeout_s, config.delivery_readers,
-        node->sightingsWritten());
-    if (!node->waitForDelivery(config.delivery_readers, config.delivery_timeout_s)) {
+        summary.sightings_published);
+    if (!node->waitForDelivery(config.delivery_readers, config.delivery_timeout_s,
+                               summary.sightings_published > 0)) {
       spdlog::warn("{}: fewer than {} fusion agent(s) took the final map and sightings within {} s",
                    config.robot_id, config.delivery_readers, config.delivery_timeout_s);
       return 3;

@@ -84,7 +84,6 @@ void RobotNode::publishSighting(const SightingReport& report) {
     }
   }
   sighting_writer_->write(&message);
-  ++sightings_written_;
 }
 
 void RobotNode::publishMap(const MapSnapshot& snapshot) {
@@ -140,7 +139,7 @@ eprosima::fastrtps::Duration_t durationOf(double seconds) {
 
 }  // namespace
 
-bool RobotNode::waitForDelivery(int readers, double timeout_s) {
+bool RobotNode::waitForDelivery(int readers, double timeout_s, bool with_sightings) {
   const auto start = std::chrono::steady_clock::now();
   const auto secondsLeft = [&] {
     const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
@@ -150,7 +149,7 @@ bool RobotNode::waitForDelivery(int readers, double timeout_s) {
   // from the map readers: a robot that left once its final map was taken could leave before the
   // fusion agent's sighting reader matched, and its sightings were lost.
   std::vector<eprosima::fastdds::dds::DataWriter*> writers{map_writer_};
-  if (sightings_written_ > 0) {
+  if (with_sightings) {
     writers.push_back(sighting_writer_);
   }
   for (eprosima::fastdds::dds::DataWriter* writer : writers) {

@@ -19,12 +19,10 @@ class RobotNode : public RobotOutput {
   void publishStatus(const StatusReport& report) override;
   void publishSighting(const SightingReport& report) override;
 
-  /// Waits (up to timeout_s) for `readers` map readers to match, and as many sighting readers when
-  /// the robot wrote sightings, and then for all matched readers to acknowledge every map and
-  /// sighting sent. False when that did not happen in time.
-  bool waitForDelivery(int readers, double timeout_s);
-  /// The sightings written on mrslam/rendezvous so far.
-  std::uint64_t sightingsWritten() const { return sightings_written_; }
+  /// Waits (up to timeout_s) for `readers` map readers to match, and as many sighting readers
+  /// `with_sightings` (the robot wrote some), and then for all matched readers to acknowledge
+  /// every map and sighting sent. False when that did not happen in time.
+  bool waitForDelivery(int readers, double timeout_s, bool with_sightings);
 
  private:
   std::string robot_id_;
@@ -35,7 +33,6 @@ class RobotNode : public RobotOutput {
   eprosima::fastdds::dds::DataWriter* ros_pose_writer_;  ///< rt/<robot>/pose for ROS 2 tools
   eprosima::fastdds::dds::DataWriter* sighting_writer_;  ///< mrslam/rendezvous
   std::uint64_t pose_sequence_ = 0;
-  std::uint64_t sightings_written_ = 0;
   msg::LocalMap map_message_;  ///< reused: maps are large
 };
 

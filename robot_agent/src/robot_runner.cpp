@@ -68,6 +68,7 @@ RunSummary RobotRunner::run(const std::atomic<bool>& stop) {
   publishMap(true);
   publishStatus(RobotState::kFinished, summary.stopped_early ? "stopped" : "end of data");
   summary.maps_published = maps_published_;
+  summary.sightings_published = sightings_published_;
   summary.replay_gaps_shortened = gaps_shortened_;
   summary.paced_log_s = paced_log_s_;
   return summary;

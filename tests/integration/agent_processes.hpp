@@ -68,6 +68,16 @@ inline std::string logOf(const tools::ChildProcess& agent) {
   return agent.logPath() + ":\n" + tools::tailOfFile(agent.logPath(), 30);
 }
 
+/// How often the file holds `text`.
+inline int occurrencesIn(const std::filesystem::path& path, const std::string& text) {
+  const std::string log = fileText(path);
+  int found = 0;
+  for (std::size_t at = log.find(text); at != std::string::npos; at = log.find(text, at + 1)) {
+    ++found;
+  }
+  return found;
+}
+
 /// Waits (bounded: `timeout_s`) until the file holds `text` `times` times.
 inline bool waitForLog(const std::filesystem::path& path, const std::string& text, int times = 1,
                        double timeout_s = 60.0) {
@@ -75,12 +85,7 @@ inline bool waitForLog(const std::filesystem::path& path, const std::string& tex
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                             std::chrono::duration<double>(timeout_s));
   while (true) {
-    const std::string log = fileText(path);
-    int found = 0;
-    for (std::size_t at = log.find(text); at != std::string::npos; at = log.find(text, at + 1)) {
-      ++found;
-    }
-    if (found >= times) {
+    if (occurrencesIn(path, text) >= times) {
       return true;
     }
     if (std::chrono::steady_clock::now() > deadline) {

@@ -86,16 +86,6 @@ TEST(MapDeliveryTest, ARobotWaitingForTwoFusionAgentsReportsWhenOnlyOneTookItsFi
   EXPECT_FALSE(run.final_sequences[0].empty()) << "the one fusion agent did get it";
 }
 
-/// How often `text` occurs in `log`.
-int occurrences(const std::filesystem::path& log, const std::string& text) {
-  const std::string all = fileText(log);
-  int count = 0;
-  for (auto at = all.find(text); at != std::string::npos; at = all.find(text, at + text.size())) {
-    ++count;
-  }
-  return count;
-}
-
 // The sightings (mrslam/rendezvous) reach the fusion agent on readers that match apart from its
 // map reader: a robot that left once its final map was taken could take its sightings with it
 // (the demo's fusion agent then never heard robot1 see anyone). A fusion agent that joins only
@@ -120,7 +110,7 @@ TEST(MapDeliveryTest, ARobotLeavesOnceTheFusionAgentHoldsItsSightingsToo) {
   EXPECT_EQ(finish(*robot, 30.0), 0) << logOf(*robot);
   // Logged as the fusion agent takes each sighting.
   EXPECT_TRUE(waitForLog(out / "fusion.log", "robot1 saw", sightings, 5.0)) << logOf(*fusion);
-  EXPECT_EQ(occurrences(out / "fusion.log", "robot1 saw"), sightings) << logOf(*fusion);
+  EXPECT_EQ(occurrencesIn(out / "fusion.log", "robot1 saw"), sightings) << logOf(*fusion);
   fusion->stop(5.0);
 }
 

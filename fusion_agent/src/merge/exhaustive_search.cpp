@@ -238,7 +238,7 @@ ValuePyramid valuePyramid(const SearchGrid& grid, int pad,
   return pyramid;
 }
 
-/// Step 3: one rotation's turned points as offsets into the pyramid's rows, in memory order.
+/// Step 3: one rotation's turned points as offsets into the pyramid's rows (turnedOffsets).
 struct Rotation {
   double theta = 0.0;
   std::vector<std::ptrdiff_t> walls;

@@ -66,6 +66,7 @@ struct RunnerSettings {
 struct RunSummary {
   std::uint64_t samples = 0;
   std::uint64_t maps_published = 0;
+  std::uint64_t sightings_published = 0;    ///< handed to the output's publishSighting
   bool stopped_early = false;               ///< the stop flag ended the run before the source did
   std::uint64_t replay_gaps_shortened = 0;  ///< steps of the log's clock beyond max_replay_gap_s
   double paced_log_s = 0.0;  ///< log time a paced replay followed, the jumps shortened
