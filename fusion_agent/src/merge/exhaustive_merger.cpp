@@ -112,7 +112,7 @@ MergeResult ExhaustiveMerger::merge(const GridMap& from, const GridMap& to) {
   if (result.accepted && settings_.check_both_ways) {
     checkTheOtherWay(from, to, found, pivot, result);
   }
-  alignAccepted(from, to, judge_.settings().wall_alignment, classes_, result);
+  judge_.alignOnInputs(from, to, result);
   return result;
 }
 

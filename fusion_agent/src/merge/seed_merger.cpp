@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mrslam/fusion/merge/reason_text.hpp"
 #include "mrslam/fusion/merge/wall_balance.hpp"
@@ -297,7 +298,9 @@ bool SeedMerger::cleanerRivalAmong(const GridMap& from, const GridMap& to,
   }
   const std::shared_ptr<const seed::SearchInputs> held = searchInputsOf(from, to);
   const seed::SearchInputs& inputs = *held;
-  std::vector<seed::Candidate> facing = placedFacing(T_to_from, others, inputs);
+  // Only rivals whose walls meet walls as well as the transform's can be cleaner
+  // (cleanerRivalOf): the others are not measured.
+  std::vector<seed::Candidate> facing = placedFacing(T_to_from, others, inputs, true);
   for (int check = 0; !facing.empty() && check <= settings_.refined_rivals; ++check) {
     const std::optional<std::size_t> rival = seed::cleanerRivalOf(facing, inputs, settings_);
     if (!rival) {
@@ -329,6 +332,21 @@ std::vector<PlacedFit> SeedMerger::placedFits(const GridMap& from, const GridMap
   return fits;
 }
 
+void SeedMerger::alignOnInputs(const GridMap& from, const GridMap& to, MergeResult& result) {
+  if (!settings_.wall_alignment.enabled || !result.accepted) {
+    return;
+  }
+  const std::shared_ptr<const seed::SearchInputs> held =
+      inputRefusal(from, to).empty() ? searchInputsOf(from, to) : nullptr;
+  if (!held || !held->walls_from || !held->walls_to) {
+    alignAccepted(from, to, settings_.wall_alignment, settings_.similarity, result);
+    return;
+  }
+  alignAccepted({*held->walls_from, *held->walls_to, tables_, held->all_samples, held->to,
+                 held->entropy_from, held->entropy_to},
+                settings_.wall_alignment, result);
+}
+
 bool SeedMerger::settlesApart(const seed::Refined& rival, const seed::Candidate& chosen,
                               const seed::SearchInputs& inputs) {
   return (rival.T_to_from.apply(inputs.pivot_from) - chosen.T_to_from.apply(inputs.pivot_from))
@@ -348,7 +366,8 @@ void SeedMerger::dropRival(std::vector<seed::Candidate>& facing, std::size_t riv
 
 std::vector<seed::Candidate> SeedMerger::placedFacing(const GridTransform& T_to_from,
                                                       const std::vector<GridTransform>& others,
-                                                      const seed::SearchInputs& inputs) const {
+                                                      const seed::SearchInputs& inputs,
+                                                      bool only_as_walled) const {
   std::vector<seed::Candidate> facing = seed::searchCandidates(
       {{T_to_from, 0.0, seed::Stage::kGiven}}, 1, inputs, tables_, settings_);
   if (facing.empty()) {
@@ -358,8 +377,11 @@ std::vector<seed::Candidate> SeedMerger::placedFacing(const GridTransform& T_to_
   for (const GridTransform& other : others) {
     given.push_back({other, -static_cast<double>(given.size()), seed::Stage::kGiven});
   }
-  const std::vector<seed::Candidate> placed =
-      seed::searchCandidates(given, static_cast<int>(given.size()), inputs, tables_, settings_);
+  const double structure_floor =
+      only_as_walled ? std::max(facing.front().structure, settings_.min_structure_agreement)
+                     : -std::numeric_limits<double>::infinity();
+  const std::vector<seed::Candidate> placed = seed::searchCandidates(
+      given, static_cast<int>(given.size()), inputs, tables_, settings_, structure_floor);
   facing.insert(facing.end(), placed.begin(), placed.end());
   return facing;
 }

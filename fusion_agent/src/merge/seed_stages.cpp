@@ -349,7 +349,8 @@ const char* stageName(Stage stage) {
 
 std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypotheses, int count,
                                         const SearchInputs& inputs, const ComparisonTables& tables,
-                                        const SeedMergerSettings& settings) {
+                                        const SeedMergerSettings& settings,
+                                        double structure_floor) {
   std::vector<Candidate> candidates;
   for (const Hypothesis& hypothesis : bestDistinct(hypotheses, count)) {
     Candidate candidate{hypothesis.T_to_from, hypothesis.stage, 0, 0.0, 0, 0.0, 0.0};
@@ -358,8 +359,6 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
           anchorOnWalls(hypothesis.T_to_from, settings.translation_window_delta, inputs, tables);
       candidate.T_to_from = walls.best;
       candidate.walls = walls.best_balance;
-      candidate.similarity =
-          compareAt(inputs.coarse_samples, inputs.to, walls.best, tables, false).similarity();
     } else {
       const TranslationSearch search = searchAround(hypothesis.T_to_from, inputs, tables, settings);
       candidate.T_to_from = search.best_similarity;
@@ -367,6 +366,14 @@ std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypothese
     }
     candidate.structure =
         twoWayStructure(inputs.coarse_samples, candidate.T_to_from, inputs, tables).strict;
+    if (candidate.structure < structure_floor) {
+      continue;
+    }
+    if (settings.wall_ranking) {
+      candidate.similarity =
+          compareAt(inputs.coarse_samples, inputs.to, candidate.T_to_from, tables, false)
+              .similarity();
+    }
     measureOverlap(inputs, tables, candidate);
     candidates.push_back(candidate);
   }

@@ -2,6 +2,7 @@
 // Private stages of SeedMerger (seed_merger.hpp summarises the pipeline): each stage is a
 // function of the prepared maps, so merge() reads as the list of blocks.
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <random>
@@ -152,9 +153,12 @@ struct Candidate {
 /// Block 8 on the `count` best distinct hypotheses; candidates ordered best first: those whose
 /// walls meet walls (structure ≥ min_structure_agreement) and whose overlap reaches
 /// min_overlap_cells (with `rank_by_overlap`) before the others, each group by similarity.
-std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypotheses, int count,
-                                        const SearchInputs& inputs, const ComparisonTables& tables,
-                                        const SeedMergerSettings& settings);
+/// Placements whose structure agreement falls below `structure_floor` are left out unmeasured
+/// (a caller that can use none of them); the others keep their order.
+std::vector<Candidate> searchCandidates(
+    const std::vector<Hypothesis>& hypotheses, int count, const SearchInputs& inputs,
+    const ComparisonTables& tables, const SeedMergerSettings& settings,
+    double structure_floor = -std::numeric_limits<double>::infinity());
 
 /// agr - dis of the best candidate after the first that meets the structure bar and puts
 /// `from`'s known cells elsewhere (more than 10 cells away at their centre), relative to the

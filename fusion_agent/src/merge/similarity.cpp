@@ -172,20 +172,21 @@ std::vector<CellSample> sampleKnownCells(const std::vector<CellSample>& known,
   const double occupied_step =
       std::max(1.0, static_cast<double>(occupied) / std::max(1, occupied_count));
   const double free_step = std::max(1.0, static_cast<double>(free) / std::max(1, free_count));
+  // Index 1 counts the occupied cells, 0 the free ones (no branch on the class).
+  const double step[2] = {free_step, occupied_step};
+  double seen[2] = {0.0, 0.0};
+  double next[2] = {0.0, 0.0};
   std::vector<CellSample> samples;
-  double occupied_seen = 0.0;
-  double free_seen = 0.0;
-  double next_occupied = 0.0;
-  double next_free = 0.0;
+  samples.reserve(std::min(known.size(), static_cast<std::size_t>(std::max(0, occupied_count)) +
+                                             static_cast<std::size_t>(std::max(0, free_count)) +
+                                             2));
   for (const CellSample& cell : known) {
-    const bool is_occupied = tables.isOccupied(cell.code);
-    double& seen = is_occupied ? occupied_seen : free_seen;
-    double& next = is_occupied ? next_occupied : next_free;
-    if (seen >= next) {
+    const int kind = tables.isOccupied(cell.code) ? 1 : 0;
+    if (seen[kind] >= next[kind]) {
       samples.push_back(cell);
-      next += is_occupied ? occupied_step : free_step;
+      next[kind] += step[kind];
     }
-    seen += 1.0;
+    seen[kind] += 1.0;
   }
   return samples;
 }

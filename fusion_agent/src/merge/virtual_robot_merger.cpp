@@ -30,7 +30,7 @@ VirtualRobotSettings loadVirtualRobotSettings(const Config& config) {
 MergeResult VirtualRobotMerger::merge(const GridMap& from, const GridMap& to) {
   MergeResult result = judgeFoundHypotheses(judge_, from, to, hypotheses(from, to), name(),
                                             "virtual robot (skeleton walks)");
-  alignAccepted(from, to, judge_.settings().wall_alignment, judge_.settings().similarity, result);
+  judge_.alignOnInputs(from, to, result);
   return result;
 }
 

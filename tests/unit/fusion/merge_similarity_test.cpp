@@ -162,6 +162,33 @@ TEST(MergeSimilarityTest, SampleTakesEvenShareOfEachClass) {
   EXPECT_NEAR(static_cast<double>(sample.size() - static_cast<std::size_t>(occupied)), 200.0, 1.0);
 }
 
+// Each class is taken on its own even grid: the j-th pick of a class is its cell number
+// ceil(j · step), step = (its cells) / (its count), whatever the other class does between them.
+TEST(MergeSimilarityTest, SampleTakesEachClassAtItsOwnEvenSteps) {
+  GridMap map = mapOf(30, 1, GridMap::kFree);
+  for (const int x : {1, 2, 5, 9, 10, 11, 17, 23, 28}) {  // 9 occupied, 21 free
+    map.at(x, 0) = GridMap::kOccupied;
+  }
+  const ComparisonTables tables{SimilaritySettings{}};
+  const std::vector<CellSample> sample = sampleKnownCells(knownCells(map, tables), tables, 4, 6);
+  std::vector<int> occupied_columns;
+  std::vector<int> free_columns;
+  for (const CellSample& cell : sample) {
+    (tables.isOccupied(cell.code) ? occupied_columns : free_columns).push_back(cell.x);
+  }
+  // Occupied: step 9 / 4 = 2.25, cells 0, 3, 5, 7 of the nine (columns 1, 9, 11, 23).
+  EXPECT_EQ(occupied_columns, (std::vector<int>{1, 9, 11, 23}));
+  // Free: step 21 / 6 = 3.5, cells 0, 4, 7, 11, 14, 18 of the 21 free columns
+  // 0 3 4 6 7 8 12 13 14 15 16 18 19 20 21 22 24 25 26 27 29.
+  EXPECT_EQ(free_columns, (std::vector<int>{0, 7, 13, 18, 21, 26}));
+  // In the map's order, the classes interleaved.
+  for (std::size_t i = 1; i < sample.size(); ++i) {
+    EXPECT_LT(sample[i - 1].x, sample[i].x);
+  }
+  // Asking for more cells than a class has takes all of it.
+  EXPECT_EQ(sampleKnownCells(knownCells(map, tables), tables, 100, 100).size(), 30u);
+}
+
 TEST(MergeSimilarityTest, RotatedSamplesLandOnTheirRoundedCells) {
   GridMap from = mapOf(5, 5, GridMap::kFree);
   from.at(4, 0) = GridMap::kOccupied;

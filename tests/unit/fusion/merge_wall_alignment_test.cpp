@@ -225,6 +225,29 @@ TEST(WallAlignmentTest, OnlyAcceptedResultsAreAlignedAndTheirFiguresTakenAgain) 
   EXPECT_GT(accepted.entropy, 0.0);
 }
 
+// The seed merger's alignment of another method's result on the pair's search inputs (their wall
+// fields, samples and code image, built once for the pair) gives what building them for it does.
+TEST(WallAlignmentTest, AlignmentOnAPairsSearchInputsEqualsOneOnFieldsBuiltForIt) {
+  const DrawnPair pair = drawnPair();
+  SeedMerger judge;
+  for (const double miss : {0.0, 1.0}) {
+    MergeResult built;
+    built.accepted = true;
+    built.T_to_from = compose(pair.T_to_from, missAboutTheRoom(miss, 1.5 * miss, 0.5 * miss));
+    MergeResult on_inputs = built;
+    alignAccepted(pair.from, pair.to, judge.settings().wall_alignment, judge.settings().similarity,
+                  built);
+    judge.alignOnInputs(pair.from, pair.to, on_inputs);
+    EXPECT_EQ(on_inputs.accepted, built.accepted) << miss;
+    EXPECT_EQ(on_inputs.reason, built.reason) << miss;
+    EXPECT_EQ(on_inputs.T_to_from.theta_rad, built.T_to_from.theta_rad) << miss;
+    EXPECT_EQ(on_inputs.T_to_from.t_cells, built.T_to_from.t_cells) << miss;
+    EXPECT_EQ(on_inputs.verification, built.verification) << miss;
+    EXPECT_EQ(on_inputs.entropy, built.entropy) << miss;
+    EXPECT_LT(apart(on_inputs.T_to_from, pair.T_to_from).cells, 0.3) << miss;
+  }
+}
+
 // Accepted transforms of `mrslam merge-cases --seed 3` that ended 1.0-2.2 cells and 0.7-1.2° from
 // the truth before the alignment (the exhaustive step's own peak, case 151 the seed step's): at
 // overlaps of 27-50 %, the walls of the overlap span a short arm, so the searches' whole cells and

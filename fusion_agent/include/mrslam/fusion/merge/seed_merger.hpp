@@ -306,6 +306,10 @@ class SeedMerger : public MapMerger {
   std::vector<PlacedFit> placedFits(const GridMap& from, const GridMap& to,
                                     const GridTransform& T_to_from,
                                     const std::vector<GridTransform>& others);
+  /// The wall alignment of an accepted `result` of another method (alignAccepted) on the pair's
+  /// block 8 inputs: their wall fields, samples and code image, built once for the pair (the
+  /// same figures as alignAccepted(from, to, ...) with this merger's settings).
+  void alignOnInputs(const GridMap& from, const GridMap& to, MergeResult& result);
 
  private:
   /// Adds `more` to the ordered `candidates`; `refined` follows a new best and the rival share.
@@ -326,9 +330,12 @@ class SeedMerger : public MapMerger {
                                               const seed::SearchInputs& inputs,
                                               const seed::Refined& first) const;
   /// `T_to_from` and then `others`, each placed by the ±δ search (empty when T_to_from is not).
+  /// `only_as_walled`: the others whose structure agreement falls below T_to_from's or below
+  /// min_structure_agreement are left out (never a cleaner rival).
   std::vector<seed::Candidate> placedFacing(const GridTransform& T_to_from,
                                             const std::vector<GridTransform>& others,
-                                            const seed::SearchInputs& inputs) const;
+                                            const seed::SearchInputs& inputs,
+                                            bool only_as_walled = false) const;
   /// Whether a refined rival places the centre of `from`'s known cells more than kRivalCells
   /// from where the chosen candidate does (a copy slid along a corridor settles back onto it).
   static bool settlesApart(const seed::Refined& rival, const seed::Candidate& chosen,
