@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "mrslam/fusion/merge/padded_spectrum.hpp"
+#include "mrslam/fusion/merge/quarter_turns.hpp"
 
 namespace mrslam::fusion {
 
@@ -133,6 +134,155 @@ bool sweeps(double theta, const GlobalSearchSettings& settings) {
                      });
 }
 
+// `to`'s images as the correlations take them: the spectra of W_to, O_to and (step 5) F_to.
+struct TargetSpectra {
+  cv::Mat weights;
+  cv::Mat walls;
+  cv::Mat free;  // empty without step 5
+};
+
+TargetSpectra targetSpectra(const cv::Mat& weights, const cv::Mat& walls, const cv::Mat& free,
+                            cv::Size size) {
+  return {paddedSpectrum(weights, size), paddedSpectrum(walls, size),
+          free.empty() ? cv::Mat() : paddedSpectrum(free, size)};
+}
+
+// s and (step 5, when `target.free` is given) s_f of one rotation from the spectra of its turned
+// images.
+struct RotationScores {
+  cv::Mat scores;
+  cv::Mat free_scores;
+};
+
+RotationScores rotationScores(const TargetSpectra& target, const cv::Mat& walls_spectrum,
+                              const cv::Mat& free_spectrum, const GlobalSearchSettings& settings) {
+  const float w = static_cast<float>(settings.free_weight);
+  RotationScores result;
+  cv::Mat on_walls;
+  cv::Mat on_free;
+  cv::mulSpectrums(target.weights, walls_spectrum, on_walls, 0, true);
+  cv::mulSpectrums(target.walls, free_spectrum, on_free, 0, true);
+  cv::idft(on_walls - w * on_free, result.scores, cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+  if (!target.free.empty()) {
+    // The same score plus the free cells that meet free cells, weighted.
+    cv::Mat free_on_free;
+    cv::mulSpectrums(target.free, free_spectrum, free_on_free, 0, true);
+    cv::idft(free_on_free, result.free_scores, cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    result.free_scores =
+        result.scores + static_cast<float>(settings.free_agreement_weight) * result.free_scores;
+  }
+  return result;
+}
+
+// The coarse maps and the turning of `from`, as every rotation shares them.
+struct Sweep {
+  CoarseMap from;
+  CoarseMap to;
+  Turn turn;
+  cv::Size size;  // of the DFTs
+  int rotations = 0;
+  bool by_free = false;
+  bool quarter_turns = false;
+};
+
+// Peaks of one rotation: those of s, then (step 5) those of s_f.
+struct RotationPeaks {
+  std::vector<GlobalHypothesis> by_walls;
+  std::vector<GlobalHypothesis> by_free;
+};
+
+RotationPeaks peaksOf(const Sweep& sweep, double theta, int coarse, RotationScores scores,
+                      const GlobalSearchSettings& settings) {
+  RotationPeaks peaks;
+  if (sweep.by_free) {
+    for (const Peak& peak : strongestPeaks(scores.free_scores, settings.peaks_per_rotation,
+                                           settings.peak_separation)) {
+      peaks.by_free.push_back(
+          {fineTransform(sweep.turn, theta, peak.shift, coarse), peak.score, true});
+    }
+  }
+  for (const Peak& peak :
+       strongestPeaks(scores.scores, settings.peaks_per_rotation, settings.peak_separation)) {
+    peaks.by_walls.push_back({fineTransform(sweep.turn, theta, peak.shift, coarse), peak.score});
+  }
+  return peaks;
+}
+
+// The spectra of `from`'s images turned by theta onto the canvas: walls, free.
+std::pair<cv::Mat, cv::Mat> turnedSpectra(const Sweep& sweep, double theta) {
+  const cv::Mat matrix = sweep.turn.matrix(theta);
+  const cv::Size canvas(sweep.turn.canvas, sweep.turn.canvas);
+  cv::Mat turned_walls;
+  cv::Mat turned_free;
+  cv::warpAffine(sweep.from.occupied, turned_walls, matrix, canvas, cv::INTER_LINEAR);
+  cv::warpAffine(sweep.from.free, turned_free, matrix, canvas, cv::INTER_LINEAR);
+  return {paddedSpectrum(turned_walls, sweep.size), paddedSpectrum(turned_free, sweep.size)};
+}
+
+// W_to = O_to - w F_to, the target of the walls of `from`.
+cv::Mat wallTarget(const Sweep& sweep, const GlobalSearchSettings& settings) {
+  return sweep.to.occupied - static_cast<float>(settings.free_weight) * sweep.to.free;
+}
+
+// Every swept rotation's peaks, by rotation index (empty where not swept), each rotation's
+// images of `from` turned and transformed.
+std::vector<RotationPeaks> sweepEachRotation(const Sweep& sweep,
+                                             const GlobalSearchSettings& settings) {
+  const int coarse = std::max(1, settings.coarse_cells);
+  const TargetSpectra target = targetSpectra(wallTarget(sweep, settings), sweep.to.occupied,
+                                             sweep.by_free ? sweep.to.free : cv::Mat(), sweep.size);
+  std::vector<RotationPeaks> peaks(static_cast<std::size_t>(sweep.rotations));
+  for (int k = 0; k < sweep.rotations; ++k) {
+    const double theta = 2.0 * M_PI * k / sweep.rotations;
+    if (!sweeps(theta, settings)) {
+      continue;
+    }
+    const auto [walls, free] = turnedSpectra(sweep, theta);
+    peaks[static_cast<std::size_t>(k)] =
+        peaksOf(sweep, theta, coarse, rotationScores(target, walls, free, settings), settings);
+  }
+  return peaks;
+}
+
+// The same for every rotation of the full turn, their count a multiple of 4, on a square DFT:
+// the images of `from` are turned and transformed for the first quarter turn only, each of them
+// correlated with `to` turned back by 0-3 quarter turns (quarter_turns.hpp).
+std::vector<RotationPeaks> sweepByQuarterTurns(const Sweep& sweep,
+                                               const GlobalSearchSettings& settings) {
+  const int coarse = std::max(1, settings.coarse_cells);
+  const int side = sweep.size.width;
+  const cv::Mat weights = wallTarget(sweep, settings);
+  const cv::Mat free = sweep.by_free ? sweep.to.free : cv::Mat();
+  std::vector<TargetSpectra> targets;
+  for (int quarters = 0; quarters < 4; ++quarters) {
+    const auto turned = [&](const cv::Mat& image) {
+      return quarters == 0 || image.empty() ? image : turnedOnTorus(image, side, quarters);
+    };
+    targets.push_back(
+        targetSpectra(turned(weights), turned(sweep.to.occupied), turned(free), sweep.size));
+  }
+  std::vector<RotationPeaks> peaks(static_cast<std::size_t>(sweep.rotations));
+  const int quarter = sweep.rotations / 4;
+  for (int k = 0; k < quarter; ++k) {
+    const auto [walls_spectrum, free_spectrum] =
+        turnedSpectra(sweep, 2.0 * M_PI * k / sweep.rotations);
+    for (int quarters = 0; quarters < 4; ++quarters) {
+      const int index = k + quarters * quarter;
+      RotationScores scores = rotationScores(targets[static_cast<std::size_t>(quarters)],
+                                             walls_spectrum, free_spectrum, settings);
+      if (quarters > 0) {
+        scores.scores = quarterTurnScores(scores.scores, sweep.turn.canvas, quarters);
+        if (sweep.by_free) {
+          scores.free_scores = quarterTurnScores(scores.free_scores, sweep.turn.canvas, quarters);
+        }
+      }
+      peaks[static_cast<std::size_t>(index)] =
+          peaksOf(sweep, 2.0 * M_PI * index / sweep.rotations, coarse, std::move(scores), settings);
+    }
+  }
+  return peaks;
+}
+
 }  // namespace
 
 std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& to,
@@ -142,66 +292,34 @@ std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& t
     return {};  // nothing to coarsen
   }
   const int coarse = std::max(1, settings.coarse_cells);
-  const CoarseMap coarse_from = coarsen(from, coarse, classes);
-  const CoarseMap coarse_to = coarsen(to, coarse, classes);
-  if (cv::countNonZero(coarse_from.occupied) == 0 || cv::countNonZero(coarse_to.occupied) == 0) {
+  Sweep sweep;
+  sweep.from = coarsen(from, coarse, classes);
+  sweep.to = coarsen(to, coarse, classes);
+  if (cv::countNonZero(sweep.from.occupied) == 0 || cv::countNonZero(sweep.to.occupied) == 0) {
     return {};
   }
-  Turn turn;
-  turn.canvas = static_cast<int>(
-                    std::ceil(std::hypot(coarse_from.occupied.cols, coarse_from.occupied.rows))) +
-                2;
+  Turn& turn = sweep.turn;
+  turn.canvas =
+      static_cast<int>(std::ceil(std::hypot(sweep.from.occupied.cols, sweep.from.occupied.rows))) +
+      2;
   turn.centre_from =
-      0.5 * Eigen::Vector2d(coarse_from.occupied.cols - 1, coarse_from.occupied.rows - 1);
+      0.5 * Eigen::Vector2d(sweep.from.occupied.cols - 1, sweep.from.occupied.rows - 1);
   turn.centre_canvas = Eigen::Vector2d::Constant(0.5 * (turn.canvas - 1));
-  const cv::Size size(cv::getOptimalDFTSize(coarse_to.occupied.cols + turn.canvas),
-                      cv::getOptimalDFTSize(coarse_to.occupied.rows + turn.canvas));
-  const float w = static_cast<float>(settings.free_weight);
-  const cv::Mat target_weights = paddedSpectrum(coarse_to.occupied - w * coarse_to.free, size);
-  const cv::Mat target_walls = paddedSpectrum(coarse_to.occupied, size);
-  const bool by_free = settings.free_agreement_hypotheses > 0;
-  const cv::Mat target_free = by_free ? paddedSpectrum(coarse_to.free, size) : cv::Mat();
-
-  const int rotations =
+  sweep.rotations =
       std::max(1, static_cast<int>(std::lround(2.0 * M_PI / settings.rotation_step_rad)));
-  const cv::Size canvas(turn.canvas, turn.canvas);
+  sweep.by_free = settings.free_agreement_hypotheses > 0;
+  sweep.quarter_turns =
+      settings.quarter_turns && settings.only_rotations_rad.empty() && sweep.rotations % 4 == 0;
+  const int width = cv::getOptimalDFTSize(sweep.to.occupied.cols + turn.canvas);
+  const int height = cv::getOptimalDFTSize(sweep.to.occupied.rows + turn.canvas);
+  sweep.size = sweep.quarter_turns ? cv::Size(std::max(width, height), std::max(width, height))
+                                   : cv::Size(width, height);
   std::vector<GlobalHypothesis> all;
   std::vector<GlobalHypothesis> all_by_free;
-  cv::Mat turned_walls;
-  cv::Mat turned_free;
-  cv::Mat free_spectrum;
-  cv::Mat on_walls;
-  cv::Mat on_free;
-  cv::Mat free_on_free;
-  cv::Mat scores;
-  cv::Mat free_scores;
-  for (int k = 0; k < rotations; ++k) {
-    const double theta = 2.0 * M_PI * k / rotations;
-    if (!sweeps(theta, settings)) {
-      continue;
-    }
-    const cv::Mat matrix = turn.matrix(theta);
-    cv::warpAffine(coarse_from.occupied, turned_walls, matrix, canvas, cv::INTER_LINEAR);
-    cv::warpAffine(coarse_from.free, turned_free, matrix, canvas, cv::INTER_LINEAR);
-    free_spectrum = paddedSpectrum(turned_free, size);
-    cv::mulSpectrums(target_weights, paddedSpectrum(turned_walls, size), on_walls, 0, true);
-    cv::mulSpectrums(target_walls, free_spectrum, on_free, 0, true);
-    cv::idft(on_walls - w * on_free, scores, cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
-    if (by_free) {
-      // The same score plus the free cells that meet free cells, weighted (before the peak
-      // search below clears the neighbourhoods of its peaks in `scores`).
-      cv::mulSpectrums(target_free, free_spectrum, free_on_free, 0, true);
-      cv::idft(free_on_free, free_scores, cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
-      free_scores = scores + static_cast<float>(settings.free_agreement_weight) * free_scores;
-      for (const Peak& peak :
-           strongestPeaks(free_scores, settings.peaks_per_rotation, settings.peak_separation)) {
-        all_by_free.push_back({fineTransform(turn, theta, peak.shift, coarse), peak.score, true});
-      }
-    }
-    for (const Peak& peak :
-         strongestPeaks(scores, settings.peaks_per_rotation, settings.peak_separation)) {
-      all.push_back({fineTransform(turn, theta, peak.shift, coarse), peak.score});
-    }
+  for (const RotationPeaks& peaks : sweep.quarter_turns ? sweepByQuarterTurns(sweep, settings)
+                                                        : sweepEachRotation(sweep, settings)) {
+    all.insert(all.end(), peaks.by_walls.begin(), peaks.by_walls.end());
+    all_by_free.insert(all_by_free.end(), peaks.by_free.begin(), peaks.by_free.end());
   }
   const Eigen::Vector2d centre_from =
       0.5 * Eigen::Vector2d(from.geometry.width - 1, from.geometry.height - 1);

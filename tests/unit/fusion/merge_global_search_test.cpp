@@ -3,12 +3,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
 #include <random>
+#include <tuple>
 
 #include "merge_crop_pairs.hpp"
 #include "merge_test_maps.hpp"
 #include "mrslam/fusion/merge/global_search.hpp"
 #include "mrslam/fusion/merge/padded_spectrum.hpp"
+#include "mrslam/fusion/merge/quarter_turns.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
 #include "test_data.hpp"
 
@@ -75,6 +79,126 @@ TEST(MergeGlobalSearchTest, FindsAKnownTurnAndShiftOfARealCrop) {
     found += truthAmong(hypotheses, known, settings) ? 1 : 0;
   }
   EXPECT_GE(found, 3) << "of " << cases << " crops overlapping by 60 % or more";
+}
+
+// Brute-force circular cross-correlation S(s) = Σ_u canvas(u) target(u + s) on a side × side
+// torus, the canvas and the target at its origin.
+cv::Mat correlation(const cv::Mat& canvas, const cv::Mat& target, int side) {
+  cv::Mat scores(side, side, CV_32F, cv::Scalar(0.0f));
+  for (int s2 = 0; s2 < side; ++s2) {
+    for (int s1 = 0; s1 < side; ++s1) {
+      double sum = 0.0;
+      for (int y = 0; y < canvas.rows; ++y) {
+        for (int x = 0; x < canvas.cols; ++x) {
+          const int tx = (x + s1) % side;
+          const int ty = (y + s2) % side;
+          if (tx < target.cols && ty < target.rows) {
+            sum += canvas.at<float>(y, x) * target.at<float>(ty, tx);
+          }
+        }
+      }
+      scores.at<float>(s2, s1) = static_cast<float>(sum);
+    }
+  }
+  return scores;
+}
+
+// The canvas turned by a quarter turn about its centre, (x, y) → (-y, x) in image coordinates:
+// turned(x, y) = canvas(y, n - 1 - x), (column, row).
+cv::Mat quarterTurned(const cv::Mat& canvas) {
+  const int n = canvas.rows;
+  cv::Mat turned(n, n, CV_32F);
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      turned.at<float>(y, x) = canvas.at<float>(n - 1 - x, y);
+    }
+  }
+  return turned;
+}
+
+// The correlation of a canvas turned by q quarter turns equals that of the unturned canvas
+// against the target turned back on the torus, read at the mapped shifts: exactly, on random
+// images, canvases of odd and even sides, targets wider and taller.
+TEST(MergeGlobalSearchTest, AQuarterTurnOfTheCanvasIsATurnOfTheTargetOnTheTorus) {
+  std::mt19937 random(17);
+  std::uniform_real_distribution<float> value(-1.0f, 1.0f);
+  const auto randomImage = [&](int rows, int cols) {
+    cv::Mat image(rows, cols, CV_32F);
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < cols; ++x) {
+        image.at<float>(y, x) = value(random);
+      }
+    }
+    return image;
+  };
+  for (const auto& [n, target_size, side] :
+       {std::tuple{7, cv::Size(9, 5), 17}, std::tuple{6, cv::Size(4, 11), 18}}) {
+    const cv::Mat canvas = randomImage(n, n);
+    const cv::Mat target = randomImage(target_size.height, target_size.width);
+    cv::Mat turned = canvas;
+    for (int quarters = 1; quarters <= 3; ++quarters) {
+      turned = quarterTurned(turned);
+      const cv::Mat expected = correlation(turned, target, side);
+      const cv::Mat found = quarterTurnScores(
+          correlation(canvas, turnedOnTorus(target, side, quarters), side), n, quarters);
+      EXPECT_LT(cv::norm(found, expected, cv::NORM_INF), 1e-4)
+          << "canvas " << n << ", " << quarters << " quarter turns";
+    }
+  }
+}
+
+// The sweep with quarter turns against turning `from` by every rotation: the same rotations and
+// shifts, the scores within 1 % (bilinear turns by 90° more differ by OpenCV's 1/32-cell
+// interpolation steps). Crops of unequal sides (the square DFT pads one side more). A hypothesis
+// within 1 % of the weakest kept one of its score may give way to another.
+TEST(MergeGlobalSearchTest, QuarterTurnsOfToGiveTheHypothesesOfTurningFrom) {
+  const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/carpin-intel.txt"));
+  ASSERT_TRUE(map.isValid());
+  std::mt19937 random(11);
+  GlobalSearchSettings every_turn;
+  every_turn.quarter_turns = false;
+  GlobalSearchSettings quarters;
+  ASSERT_TRUE(quarters.quarter_turns);
+  ASSERT_EQ(std::lround(2.0 * M_PI / quarters.rotation_step_rad) % 4, 0);
+  int matched = 0;
+  int beyond_first_quarter = 0;
+  for (int c = 0; c < 3; ++c) {
+    merge_test::KnownCase known;
+    while (known.overlap == 0.0) {
+      known = merge_test::randomCase(map, 200 + 40 * c, 0.3, 1.01, random);
+    }
+    GridMap from = known.from;  // cut to unequal sides
+    from.geometry.height -= 30 + 10 * c;
+    from.cells.resize(from.geometry.cellCount());
+    const std::vector<GlobalHypothesis> expected =
+        globalSearch(from, known.to, every_turn, SimilaritySettings{});
+    const std::vector<GlobalHypothesis> found =
+        globalSearch(from, known.to, quarters, SimilaritySettings{});
+    ASSERT_EQ(found.size(), expected.size()) << "crop " << c;
+    double weakest[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+    for (const GlobalHypothesis& want : expected) {
+      double& least = weakest[want.by_free_agreement ? 1 : 0];
+      least = std::min(least, want.score);
+    }
+    for (const GlobalHypothesis& want : expected) {
+      const bool same = std::any_of(found.begin(), found.end(), [&](const auto& got) {
+        return got.by_free_agreement == want.by_free_agreement &&
+               std::abs(got.T_to_from.theta_rad - want.T_to_from.theta_rad) < 1e-9 &&
+               (got.T_to_from.t_cells - want.T_to_from.t_cells).norm() < 1e-6 &&
+               std::abs(got.score - want.score) <= 0.01 * std::abs(want.score);
+      });
+      const bool at_the_cut = want.score <= 1.01 * weakest[want.by_free_agreement ? 1 : 0];
+      EXPECT_TRUE(same || at_the_cut)
+          << "crop " << c << ": " << want.T_to_from.theta_rad << " rad, ("
+          << want.T_to_from.t_cells.transpose() << "), score " << want.score;
+      matched += same ? 1 : 0;
+      beyond_first_quarter +=
+          same && std::abs(std::remainder(want.T_to_from.theta_rad, 2.0 * M_PI)) > 0.5 * M_PI ? 1
+                                                                                              : 0;
+    }
+  }
+  EXPECT_GE(matched, 30);
+  EXPECT_GE(beyond_first_quarter, 10) << "the other quarters are compared too";
 }
 
 // Best first within each score: the walls' (s) first, then those with free agreement (s_f).

@@ -10,6 +10,8 @@
 // 2. For every rotation θ_k = k · `rotation_step` over the full turn (or only those within one
 //    step of `only_rotations`, for a finer second sweep around the first's answers), `from`'s
 //    coarse occupied and free images are turned (bilinear) onto a canvas, O_from(θ) and F_from(θ).
+//    Sweeping every rotation, only those of the first quarter turn are turned: the others are
+//    correlated as `to` turned back by whole quarter turns (`quarter_turns`, quarter_turns.hpp).
 // 3. The score of every translation at once, by DFT:
 //      s(t) = Σ_u O_from(θ)(u) W_to(u + t) - w Σ_u F_from(θ)(u) O_to(u + t),
 //    walls on walls count, walls of either map on the other's known free space cost w.
@@ -45,6 +47,11 @@ struct GlobalSearchSettings {
   int free_agreement_hypotheses = 6;   ///< step 5: best peaks of that score returned (0: off)
   std::vector<double>
       only_rotations_rad;  ///< when not empty: the sweep's rotations near these only
+  /// When every rotation is swept and their count is a multiple of 4: the images of `from` are
+  /// turned and transformed for the first quarter turn only, each other rotation correlated with
+  /// `to` turned back by whole quarter turns instead (a square DFT). The same scores up to
+  /// rounding; false: every rotation turned and transformed on its own.
+  bool quarter_turns = true;
 };
 
 /// A coarse transform and its correlation score s(t).
