@@ -221,13 +221,7 @@ MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
   }
   judge(refined, inputs, result);  // block 9
   lap(clock, timings_.verification);
-  if (inputs.walls_from && inputs.walls_to) {  // block 8's fields, when it settled on them
-    alignAccepted({*inputs.walls_from, *inputs.walls_to, tables_, inputs.all_samples, inputs.to,
-                   inputs.entropy_from, inputs.entropy_to, &refined.full},
-                  settings_.wall_alignment, result);
-  } else {
-    alignAccepted(from, to, settings_.wall_alignment, settings_.similarity, result);
-  }
+  alignOn(inputs, from, to, &refined.full, result);
   lap(clock, timings_.alignment);
   return result;
 }
@@ -336,15 +330,22 @@ void SeedMerger::alignOnInputs(const GridMap& from, const GridMap& to, MergeResu
   if (!settings_.wall_alignment.enabled || !result.accepted) {
     return;
   }
-  const std::shared_ptr<const seed::SearchInputs> held =
-      inputRefusal(from, to).empty() ? searchInputsOf(from, to) : nullptr;
-  if (!held || !held->walls_from || !held->walls_to) {
+  if (!inputRefusal(from, to).empty()) {
     alignAccepted(from, to, settings_.wall_alignment, settings_.similarity, result);
     return;
   }
-  alignAccepted({*held->walls_from, *held->walls_to, tables_, held->all_samples, held->to,
-                 held->entropy_from, held->entropy_to},
-                settings_.wall_alignment, result);
+  alignOn(*searchInputsOf(from, to), from, to, nullptr, result);
+}
+
+void SeedMerger::alignOn(const seed::SearchInputs& inputs, const GridMap& from, const GridMap& to,
+                         const Agreement* at_found, MergeResult& result) const {
+  if (inputs.walls_from && inputs.walls_to) {  // block 8's fields, when it settled on them
+    alignAccepted({*inputs.walls_from, *inputs.walls_to, tables_, inputs.all_samples, inputs.to,
+                   inputs.entropy_from, inputs.entropy_to, at_found},
+                  settings_.wall_alignment, result);
+  } else {
+    alignAccepted(from, to, settings_.wall_alignment, settings_.similarity, result);
+  }
 }
 
 bool SeedMerger::settlesApart(const seed::Refined& rival, const seed::Candidate& chosen,

@@ -23,6 +23,19 @@ struct CropPair {
   CropSpec b;
 };
 
+/// Every figure of two merge results equal: the decision, its method and reason, the transform,
+/// V and the entropy (`what` names the comparison in a failure).
+inline void expectTheSameDecision(const MergeResult& kept, const MergeResult& built,
+                                  const std::string& what) {
+  EXPECT_EQ(kept.accepted, built.accepted) << what;
+  EXPECT_EQ(kept.method, built.method) << what;
+  EXPECT_EQ(kept.reason, built.reason) << what;
+  EXPECT_EQ(kept.T_to_from.theta_rad, built.T_to_from.theta_rad) << what;
+  EXPECT_EQ(kept.T_to_from.t_cells, built.T_to_from.t_cells) << what;
+  EXPECT_EQ(kept.verification, built.verification) << what;
+  EXPECT_EQ(kept.entropy, built.entropy) << what;
+}
+
 inline MergeCase cut(const CropPair& pair) {
   const SourceMap source{pair.map, "one building",
                          loadMapFile(test::sharedDataPath(std::string("maps/") + pair.map))};

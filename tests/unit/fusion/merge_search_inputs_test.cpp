@@ -28,17 +28,6 @@ std::unique_ptr<MapMerger> chainBuildingEveryInput() {
   return chain;
 }
 
-void expectTheSameDecision(const MergeResult& kept, const MergeResult& built,
-                           const std::string& what) {
-  EXPECT_EQ(kept.accepted, built.accepted) << what;
-  EXPECT_EQ(kept.method, built.method) << what;
-  EXPECT_EQ(kept.reason, built.reason) << what;
-  EXPECT_EQ(kept.T_to_from.theta_rad, built.T_to_from.theta_rad) << what;
-  EXPECT_EQ(kept.T_to_from.t_cells, built.T_to_from.t_cells) << what;
-  EXPECT_EQ(kept.verification, built.verification) << what;
-  EXPECT_EQ(kept.entropy, built.entropy) << what;
-}
-
 TEST(SearchInputsTest, AChainThatKeepsThemDecidesAsOneThatBuildsThemEveryTime) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   // Cases 2 (Carpin's robot 3, 63 % overlap, merged by the exhaustive step) and 82 (ACES, 46 %,
@@ -67,8 +56,9 @@ TEST(SearchInputsTest, AChainThatKeepsThemDecidesAsOneThatBuildsThemEveryTime) {
       const GridMap& from = back ? merge_case.b : merge_case.a;
       const GridMap& to = back ? merge_case.a : merge_case.b;
       const MergeResult kept = keeping->merge(from, to);
-      expectTheSameDecision(kept, building->merge(from, to),
-                            "case " + std::to_string(merge_case.id) + (back ? " back" : ""));
+      merge_test::expectTheSameDecision(
+          kept, building->merge(from, to),
+          "case " + std::to_string(merge_case.id) + (back ? " back" : ""));
       accepted +=
           kept.accepted &&
                   isCorrect(caseError(merge_case, back ? kept.T_to_from.inverse() : kept.T_to_from))

@@ -385,6 +385,11 @@ class SeedMerger : public MapMerger {
   /// Block 8's inputs; `reversed` (may be null): those of (to, from), whose wall fields serve.
   seed::SearchInputs searchInputs(const GridMap& from, const GridMap& to,
                                   const seed::SearchInputs* reversed = nullptr) const;
+  /// The wall alignment of an accepted `result` on a pair's block 8 inputs: their wall fields
+  /// when they hold both, else fields built for it; `at_found` (may be null): the comparison of
+  /// all known cells at result.T_to_from, when the caller has it.
+  void alignOn(const seed::SearchInputs& inputs, const GridMap& from, const GridMap& to,
+               const Agreement* at_found, MergeResult& result) const;
   /// searchInputs() of a pair held in inputs_cache_, built only for a pair it does not hold: a
   /// chain judges many transforms of one pair in turn (judgeHypotheses, placedFits, ...). The
   /// caller holds what it is given while it uses it.
