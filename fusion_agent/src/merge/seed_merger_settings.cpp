@@ -204,6 +204,7 @@ void readAlignmentSettings(const Config& section, SeedMergerSettings& settings) 
       section.getDouble("wall_alignment_turn_deg", alignment.max_turn_deg, {0.0, 10.0});
   alignment.max_shift_cells =
       section.getDouble("wall_alignment_shift_cells", alignment.max_shift_cells, {0.0, 20.0});
+  alignment.starts = readInt(section, "wall_alignment_starts", alignment.starts, {1, 100});
   settings.settle_alignment = section.getBool("settle_alignment", settings.settle_alignment);
   alignment.turn_check_deg =
       section.getDouble("wall_turn_check_deg", alignment.turn_check_deg, {0.1, 45.0});

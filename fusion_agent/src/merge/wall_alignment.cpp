@@ -241,9 +241,23 @@ struct Best {
   double score = 0.0;
 };
 
-// Every turn and shift of the coarse grid, on the wide field; the zero offset first, so that the
-// accepted transform wins ties.
-Offset searchGrid(const OffsetScorer& scorer, const WallAlignmentSettings& settings) {
+struct GridPoint {
+  Offset offset;
+  double score = 0.0;
+};
+
+// Whether two offsets of the coarse grid lie apart by more than one grid step in turn or shift.
+bool apartOnGrid(const Offset& a, const Offset& b, const WallAlignmentSettings& settings) {
+  const double turn_steps = std::abs(a.turn - b.turn) / (settings.coarse_turn_step_deg * kDegToRad);
+  const double shift_steps =
+      (a.shift - b.shift).cwiseAbs().maxCoeff() / settings.coarse_shift_cells;
+  return turn_steps > 1.5 || shift_steps > 1.5;
+}
+
+// Every turn and shift of the coarse grid, on the wide field; the best `starts` of them, each
+// more than a grid step from the better ones, best first. The zero offset is scored first, so
+// that the accepted transform wins ties.
+std::vector<Offset> searchGrid(const OffsetScorer& scorer, const WallAlignmentSettings& settings) {
   const int turns =
       static_cast<int>(std::floor(settings.max_turn_deg / settings.coarse_turn_step_deg + 1e-9));
   const int shifts =
@@ -257,18 +271,30 @@ Offset searchGrid(const OffsetScorer& scorer, const WallAlignmentSettings& setti
       }
     }
   }
-  Best best{{}, scorer.score({}, Level::kCoarse)};
+  std::vector<GridPoint> points;
   for (int k = 0; k <= 2 * turns; ++k) {
     const int step = (k + 1) / 2 * (k % 2 == 1 ? 1 : -1);  // 0, 1, -1, 2, -2, ...
     const double turn = step * settings.coarse_turn_step_deg * kDegToRad;
     const std::vector<double> scores = scorer.scores(turn, grid, Level::kCoarse);
     for (std::size_t g = 0; g < grid.size(); ++g) {
-      if (scores[g] > best.score) {
-        best = {{turn, grid[g]}, scores[g]};
-      }
+      points.push_back({{turn, grid[g]}, scores[g]});
     }
   }
-  return best.offset;
+  std::stable_sort(points.begin(), points.end(),
+                   [](const GridPoint& a, const GridPoint& b) { return a.score > b.score; });
+  std::vector<Offset> starts;
+  for (const GridPoint& point : points) {
+    if (static_cast<int>(starts.size()) >= std::max(1, settings.starts)) {
+      break;
+    }
+    const bool apart = std::all_of(starts.begin(), starts.end(), [&](const Offset& start) {
+      return apartOnGrid(start, point.offset, settings);
+    });
+    if (apart) {
+      starts.push_back(point.offset);
+    }
+  }
+  return starts;
 }
 
 // Pattern search of the narrow field from `start`: one step up or down in each of the turn and
@@ -388,15 +414,35 @@ bool landsEnoughWalls(const WallField& from, const WallField& to, const GridTran
 
 }  // namespace
 
-GridTransform alignWalls(const WallField& from, const WallField& to, const GridTransform& T_to_from,
-                         const WallAlignmentSettings& settings) {
+WallPeaks wallPeaks(const WallField& from, const WallField& to, const GridTransform& T_to_from,
+                    const WallAlignmentSettings& settings) {
   if (!landsEnoughWalls(from, to, T_to_from, settings.min_walls)) {
-    return T_to_from;
+    return {T_to_from, T_to_from};
   }
   const OffsetScorer scorer(from, to, T_to_from, settings);
   const double at_start = scorer.score({}, Level::kFine);
-  const Best best = searchPattern(scorer, settings, searchGrid(scorer, settings));
-  return best.score > at_start ? scorer.transform(best.offset) : T_to_from;
+  const auto placed = [&](const Best& best) {
+    return best.score > at_start ? scorer.transform(best.offset) : T_to_from;
+  };
+  const std::vector<Offset> starts = searchGrid(scorer, settings);
+  Best highest{{}, at_start};
+  WallPeaks peaks;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    const Best climbed = searchPattern(scorer, settings, starts[i]);
+    if (i == 0) {
+      peaks.first = placed(climbed);
+    }
+    if (climbed.score > highest.score) {
+      highest = climbed;
+    }
+  }
+  peaks.highest = placed(highest);
+  return peaks;
+}
+
+GridTransform alignWalls(const WallField& from, const WallField& to, const GridTransform& T_to_from,
+                         const WallAlignmentSettings& settings) {
+  return wallPeaks(from, to, T_to_from, settings).highest;
 }
 
 double wallTurnShare(const WallField& from, const WallField& to, const GridTransform& T_to_from,
@@ -425,13 +471,24 @@ double wallTurnShare(const WallField& from, const WallField& to, const GridTrans
 
 namespace {
 
-// The turn check: `result` refused when its walls meet as well turned (wallTurnShare).
+bool sameTransform(const GridTransform& a, const GridTransform& b) {
+  return a.theta_rad == b.theta_rad && a.t_cells == b.t_cells;
+}
+
+// The turn check: `result` refused when its walls meet as well turned (wallTurnShare) at any of
+// `placed`.
 void refuseUnlessTurnFixed(const WallField& from, const WallField& to,
-                           const WallAlignmentSettings& settings, MergeResult& result) {
+                           const WallAlignmentSettings& settings,
+                           const std::vector<GridTransform>& placed, MergeResult& result) {
   if (settings.max_turn_share >= 1.0) {
     return;
   }
-  const double share = wallTurnShare(from, to, result.T_to_from, settings);
+  double share = 0.0;
+  for (std::size_t i = 0; i < placed.size(); ++i) {
+    if (i == 0 || !sameTransform(placed[i], placed[0])) {
+      share = std::max(share, wallTurnShare(from, to, placed[i], settings));
+    }
+  }
   result.wall_turn_share = share;
   if (share >= settings.max_turn_share) {
     result.accepted = false;
@@ -440,6 +497,27 @@ void refuseUnlessTurnFixed(const WallField& from, const WallField& to,
                     reasonFigure(settings.turn_check_deg) + " degrees they meet " +
                     reasonFigure(share) + " as well";
   }
+}
+
+// An aligned transform and the agreement of all known cells there.
+struct Placed {
+  GridTransform T_to_from;
+  Agreement full;
+};
+
+// `aligned` where V is at least as high there as at `found`, else `found`.
+Placed keptWhereVHolds(const AlignmentMaps& maps, const GridTransform& aligned,
+                       const GridTransform& found, const Agreement& at_found) {
+  if (sameTransform(aligned, found)) {
+    return {found, at_found};
+  }
+  const Agreement at_aligned = compareAt(maps.known_from, maps.codes_to, aligned, maps.tables);
+  // The walls may pull a little off where the cells of the two maps agree best (crops resampled
+  // differently, a wall doubled by pose error): the alignment never lowers V.
+  if (verificationIndex(at_aligned) >= verificationIndex(at_found)) {
+    return {aligned, at_aligned};
+  }
+  return {found, at_found};
 }
 
 }  // namespace
@@ -462,23 +540,19 @@ void alignAccepted(const AlignmentMaps& maps, const WallAlignmentSettings& setti
   if (!settings.enabled || !result.accepted) {
     return;
   }
-  const GridTransform aligned =
-      alignWalls(maps.field_from, maps.field_to, result.T_to_from, settings);
+  const WallPeaks peaks = wallPeaks(maps.field_from, maps.field_to, result.T_to_from, settings);
   const Agreement at_found =
       maps.at_found ? *maps.at_found
                     : compareAt(maps.known_from, maps.codes_to, result.T_to_from, maps.tables);
-  const bool moved = aligned.theta_rad != result.T_to_from.theta_rad ||
-                     aligned.t_cells != result.T_to_from.t_cells;
-  const Agreement at_aligned =
-      moved ? compareAt(maps.known_from, maps.codes_to, aligned, maps.tables) : at_found;
-  // The walls may pull a little off where the cells of the two maps agree best (crops resampled
-  // differently, a wall doubled by pose error): the alignment never lowers V.
-  const bool keep = verificationIndex(at_aligned) >= verificationIndex(at_found);
-  const Agreement& full = keep ? at_aligned : at_found;
-  result.T_to_from = keep ? aligned : result.T_to_from;
-  result.verification = verificationIndex(full);
-  result.entropy = mergedEntropy(maps.entropy_from, maps.entropy_to, full);
-  refuseUnlessTurnFixed(maps.field_from, maps.field_to, settings, result);
+  const Placed highest = keptWhereVHolds(maps, peaks.highest, result.T_to_from, at_found);
+  const Placed first = sameTransform(peaks.first, peaks.highest)
+                           ? highest
+                           : keptWhereVHolds(maps, peaks.first, result.T_to_from, at_found);
+  result.T_to_from = highest.T_to_from;
+  result.verification = verificationIndex(highest.full);
+  result.entropy = mergedEntropy(maps.entropy_from, maps.entropy_to, highest.full);
+  refuseUnlessTurnFixed(maps.field_from, maps.field_to, settings,
+                        {highest.T_to_from, first.T_to_from}, result);
 }
 
 }  // namespace mrslam::fusion

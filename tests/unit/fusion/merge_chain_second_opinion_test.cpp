@@ -25,17 +25,15 @@ using merge_test::CropPair;
 // Small overlaps (26-32 %) that the exhaustive step alone places 1.0-2.7° from the truth, its 3°
 // turns keeping 0.91-0.94 of the walls' agreement (the turn check's bar is 0.95), while the seed
 // step alone ends 0.2-1.8 cells and 0.8-2.4° from that placement and refuses it for the turn check
-// (0.962-1.08): case 165 of `--seed 3`, 105 of `--seed 14`, 186 of `--seed 30` (ap_hill) and 15
-// of `--seed 40` (intel).
+// (0.962-1.08): case 165 of `--seed 3`, 186 of `--seed 30` (ap_hill) and 15 of `--seed 40`
+// (intel). Since the wall alignment climbs from three starts (twenty-sixth session), the
+// exhaustive step alone ends within the tolerance in 186, and refuses case 105 of `--seed 14`
+// (listed here before) by its own turn check at the first climb's peak.
 const CropPair kNearMissesWithAnUnfixedTurn[] = {
     {"carpin-robot1_cast.txt",
      165,
      {{80, -71}, 243, -2.8966120672679008, {29, 21}, {16, 34}},
      {{84, 145}, 219, -0.02164073794931376, {22, 4}, {16, 6}}},
-    {"carpin-robot2_cast.txt",
-     105,
-     {{29, 1}, 303, 1.218662270838033, {32, 3}, {5, 22}},
-     {{313, -20}, 172, 0.5146623381407611, {27, 18}, {29, 37}}},
     {"carpin-robot1_cast.txt",
      186,
      {{142, 49}, 167, -1.8069782742524487, {16, 30}, {39, 14}},
@@ -126,7 +124,6 @@ TEST(MergeChainSecondOpinionTest, TheSettingsAreReadAndRangeChecked) {
 
 TEST(MergeChainSecondOpinionTest, ATurnTheSeedStepFindsUnfixedNearByIsRefused) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
-  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-intel.txt");
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
   const std::unique_ptr<MapMerger> without =
@@ -136,6 +133,9 @@ TEST(MergeChainSecondOpinionTest, ATurnTheSeedStepFindsUnfixedNearByIsRefused) {
     const MergeResult refused = chain->merge(merge_case.a, merge_case.b);
     EXPECT_TRUE(refusedByTheSecondOpinion(refused))
         << "case " << pair.case_id << ": " << refused.reason;
+    if (pair.case_id == 186) {
+      continue;  // placed right without it (above)
+    }
     // Without the second opinion the exhaustive step's near miss is accepted: a false accept.
     const MergeResult wrong = without->merge(merge_case.a, merge_case.b);
     EXPECT_TRUE(wrong.accepted) << "case " << pair.case_id << ": " << wrong.reason;
@@ -160,7 +160,7 @@ TEST(MergeChainSecondOpinionTest, ASeedPlacementBeyondTheWindowsSaysNothing) {
 }
 
 TEST(MergeChainSecondOpinionTest, TheSeedStepRunsOnlyWhereAskedOrReachedAndOnce) {
-  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
   // Asked after the exhaustive step accepted, refused by it, then reached as the next step: once.
   const auto [refused, asked_then_reached] = mergeCountingSeedRuns(kNearMissesWithAnUnfixedTurn[1]);

@@ -41,9 +41,10 @@
 //    searches leave (median error on accepted real crops 0.04 cells and 0.01° against 0.38 cells
 //    and 0.12° without it).
 //    With `settle_alignment` (ours) the anchored transform is also aligned on both maps' walls
-//    (step 11's alignment, from the anchor) and replaces the result above where V is at least as
-//    high: the acceptance's figures (structure, ambiguity, entropy) are then taken at a transform
-//    a fraction of a cell from where the walls meet.
+//    (step 11's alignment, from the anchor, climbing from the coarse grid's best point alone) and
+//    replaces the result above where V is at least as high: the acceptance's figures (structure,
+//    ambiguity, entropy) are then taken at a transform a fraction of a cell from where the walls
+//    meet.
 // 8. Verification (block 9): V = agr / (agr + dis) over all known cells and the merged map's
 //    entropy. Accepted only when V ≥ `min_verification_v`, the overlap has ≥ `min_overlap_cells`
 //    known cells, the entropy minimum over the ±δ shifts lies within `entropy_agreement_cells` of
@@ -217,7 +218,7 @@ struct SeedMergerSettings {
   /// mergers this one judges (exhaustive, virtual robot).
   WallAlignmentSettings wall_alignment;
   /// Step 7 with wall_anchor: the anchored transform also aligned on both maps' walls (the window
-  /// of wall_alignment), taken instead of the polished one where V is at least as high.
+  /// of wall_alignment, one start), taken instead of the polished one where V is at least as high.
   bool settle_alignment = true;
 };
 

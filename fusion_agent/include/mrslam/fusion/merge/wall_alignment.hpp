@@ -20,16 +20,22 @@
 // some transform of the window can carry onto the other map's known cells are scored (an even
 // sample of at most coarse_walls or max_walls of them per map). The search: every turn of the
 // window in coarse_turn_step_deg steps with every shift in coarse_shift_cells steps, on a wider
-// field (coarse_sigma_cells); then a pattern search of the narrow field from the best, its steps
-// halved fine_steps times. The result is the accepted transform unless W of the narrow field is
-// higher there. After acceptance (alignAccepted) the aligned transform is kept only where V does
-// not drop: on 1013 accepted known-answer merges, V dropped at 6 of the 9 the alignment moved
-// away from the truth and at 15 of the 373 it moved towards it.
+// field (coarse_sigma_cells); then a pattern search of the narrow field from each of the `starts`
+// best grid points (each more than a grid step from the better ones), its steps halved fine_steps
+// times, and the highest climb kept. The result is the accepted transform unless W of the narrow
+// field is higher there. Several starts: W can have two basins a degree or two apart in the
+// window, the wide field favouring one while the narrow one is higher in the other (four near
+// misses of the 40 case sets, each 1.3-1.7° off, ended at the truth). After acceptance
+// (alignAccepted) the aligned transform is kept only where V does not drop: on 1013 accepted
+// known-answer merges, V dropped at 6 of the 9 the alignment moved away from the truth and at 15 of
+// the 373 it moved towards it.
 //
 // The turn check: a transform whose walls meet as well turned by 3° (the shift found again) is a
-// guess of the rotation. Of the 517 merges the chain accepted on three known-answer case sets,
-// the one wrong (2.6 cells, 1.4° off: an overlap that is a thin strip of wall stubs along a window
-// edge) kept 0.962 of W turned by 3°; of the right ones, three kept 0.966-1.02 and the next 0.93.
+// guess of the rotation. It runs where the alignment ends and where the climb from the grid's best
+// point ends: a guessed rotation at either peak refuses. Of the 517 merges the chain accepted on
+// three known-answer case sets, the one wrong (2.6 cells, 1.4° off: an overlap that is a thin strip
+// of wall stubs along a window edge) kept 0.962 of W turned by 3°; of the right ones, three kept
+// 0.966-1.02 and the next 0.93.
 
 #include <vector>
 
@@ -49,6 +55,7 @@ struct WallAlignmentSettings {
   double coarse_shift_cells = 1.0;    ///< grid step of the shifts
   int coarse_walls = 300;             ///< walls of each map on the coarse grid (an even sample)
   int fine_steps = 4;                 ///< halvings of the pattern search's steps after the grid
+  int starts = 3;        ///< pattern searches from the best grid points, each a grid step apart
   int max_walls = 1000;  ///< walls of each map in the pattern search (an even sample above this)
   int min_walls = 20;    ///< fewer walls on the other's known cells (both ways): left as found
   /// The turn check after the alignment: the aligned transform turned by ±turn_check_deg about the
@@ -91,8 +98,18 @@ struct WallAgreement {
 WallAgreement wallAgreement(const WallField& from, const WallField& to,
                             const GridTransform& T_to_from);
 
-/// The transform of the largest W within the window around T_to_from (T_to_from itself when
-/// fewer than min_walls walls land on the other map's known cells there).
+/// Where W peaks within the window around T_to_from: the highest of the climbs from the coarse
+/// grid's `starts` best distinct points, and the climb from its best point alone (T_to_from where
+/// a climb ends no higher than it, and both when fewer than min_walls walls land on the other
+/// map's known cells there).
+struct WallPeaks {
+  GridTransform highest;
+  GridTransform first;
+};
+WallPeaks wallPeaks(const WallField& from, const WallField& to, const GridTransform& T_to_from,
+                    const WallAlignmentSettings& settings);
+
+/// The transform of the largest W within the window around T_to_from: wallPeaks().highest.
 GridTransform alignWalls(const WallField& from, const WallField& to, const GridTransform& T_to_from,
                          const WallAlignmentSettings& settings);
 
@@ -102,11 +119,12 @@ GridTransform alignWalls(const WallField& from, const WallField& to, const GridT
 double wallTurnShare(const WallField& from, const WallField& to, const GridTransform& T_to_from,
                      const WallAlignmentSettings& settings);
 
-/// With settings.enabled and an accepted `result`: its transform aligned when V (block 9, over
-/// all known cells) is at least as high there as at the transform found, and V and the merged
-/// entropy taken again at the transform kept; then refused when wallTurnShare() at it reaches
-/// max_turn_share (the walls do not fix the rotation; the reason says so). A refused result is
-/// left as it is.
+/// With settings.enabled and an accepted `result`: its transform aligned (wallPeaks().highest)
+/// when V (block 9, over all known cells) is at least as high there as at the transform found,
+/// and V and the merged entropy taken again at the transform kept; then refused when
+/// wallTurnShare() reaches max_turn_share at it or at the first climb's peak (kept alike where V
+/// holds): the walls do not fix the rotation, and the reason says so. A refused result is left as
+/// it is.
 void alignAccepted(const GridMap& from, const GridMap& to, const WallAlignmentSettings& settings,
                    const SimilaritySettings& classes, MergeResult& result);
 /// What alignAccepted() reads of the two maps, prepared by a merger that has it already.
