@@ -475,19 +475,17 @@ bool sameTransform(const GridTransform& a, const GridTransform& b) {
   return a.theta_rad == b.theta_rad && a.t_cells == b.t_cells;
 }
 
-// The turn check: `result` refused when its walls meet as well turned (wallTurnShare) at any of
-// `placed`.
+// The turn check: `result` refused when its walls meet as well turned (wallTurnShare) at
+// `highest` or at `first`.
 void refuseUnlessTurnFixed(const WallField& from, const WallField& to,
-                           const WallAlignmentSettings& settings,
-                           const std::vector<GridTransform>& placed, MergeResult& result) {
+                           const WallAlignmentSettings& settings, const GridTransform& highest,
+                           const GridTransform& first, MergeResult& result) {
   if (settings.max_turn_share >= 1.0) {
     return;
   }
-  double share = 0.0;
-  for (std::size_t i = 0; i < placed.size(); ++i) {
-    if (i == 0 || !sameTransform(placed[i], placed[0])) {
-      share = std::max(share, wallTurnShare(from, to, placed[i], settings));
-    }
+  double share = wallTurnShare(from, to, highest, settings);
+  if (!sameTransform(first, highest)) {
+    share = std::max(share, wallTurnShare(from, to, first, settings));
   }
   result.wall_turn_share = share;
   if (share >= settings.max_turn_share) {
@@ -551,8 +549,8 @@ void alignAccepted(const AlignmentMaps& maps, const WallAlignmentSettings& setti
   result.T_to_from = highest.T_to_from;
   result.verification = verificationIndex(highest.full);
   result.entropy = mergedEntropy(maps.entropy_from, maps.entropy_to, highest.full);
-  refuseUnlessTurnFixed(maps.field_from, maps.field_to, settings,
-                        {highest.T_to_from, first.T_to_from}, result);
+  refuseUnlessTurnFixed(maps.field_from, maps.field_to, settings, highest.T_to_from,
+                        first.T_to_from, result);
 }
 
 }  // namespace mrslam::fusion
