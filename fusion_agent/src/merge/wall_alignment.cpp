@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "mrslam/fusion/merge/reason_text.hpp"
@@ -173,62 +174,71 @@ class OffsetScorer {
     std::vector<double> result;
     result.reserve(shifts.size());
     for (const Eigen::Vector2d& shift : shifts) {
-      result.push_back(sum(turned.from, shift, to_, level) +
-                       sum(turned.to, -turned.unturn.apply(shift), from_, level));
+      result.push_back(to_.sumAt(turned.from, shift, level) +
+                       from_.sumAt(turned.to, -turned.unturn.apply(shift), level));
     }
     return result;
   }
-  double score(const Offset& offset, Level level) const {
-    return scores(offset.turn, {offset.shift}, level).front();
+  /// W of the narrow field at one offset. Each offset is summed once: the climbs step back onto
+  /// offsets scored before, and climbs from several starts meet.
+  double score(const Offset& offset) const {
+    for (const Scored& known : scored_) {
+      if (known.offset.turn == offset.turn && known.offset.shift == offset.shift) {
+        return known.score;
+      }
+    }
+    const double value = scores(offset.turn, {offset.shift}, Level::kFine).front();
+    scored_.push_back({offset, value});
+    return value;
   }
 
  private:
   static std::size_t index(Level level) { return level == Level::kCoarse ? 0 : 1; }
-  static Cells moved(const Cells& cells, const GridTransform& T) {
-    Cells result;
-    result.reserve(cells.size());
+  static void moveInto(const Cells& cells, const GridTransform& T, Cells& result) {
+    result.resize(cells.size());
     const CellMapping mapped(T);
-    for (const Eigen::Vector2d& cell : cells) {
-      result.push_back(mapped(cell));
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      result[i] = mapped(cells[i]);
     }
-    return result;
-  }
-  static double sum(const Cells& cells, const Eigen::Vector2d& shift, const WallField& field,
-                    Level level) {
-    double total = 0.0;
-    for (const Eigen::Vector2d& cell : cells) {
-      total += field.fieldAt(cell + shift, level);
-    }
-    return total;
   }
 
-  // The walls of both maps at one turn and no shift; the last turn's are kept, as the pattern
-  // search shifts more often than it turns.
+  // The walls of both maps at one turn and no shift. The last kTurnsKept turns' are kept: a step
+  // of the pattern search tries the turns on either side and then shifts at its own.
   struct Turned {
-    double turn = 0.0;
+    double turn = std::numeric_limits<double>::quiet_NaN();  // NaN: an empty slot, never matched
     Level level = Level::kCoarse;
-    bool valid = false;
     Cells from;  // from_'s walls in to_'s cells
     Cells to;    // to_'s walls in from_'s cells
     GridTransform unturn;
   };
+  static constexpr std::size_t kTurnsKept = 4;
   const Turned& turnedWalls(double turn, Level level) const {
-    if (!last_.valid || last_.turn != turn || last_.level != level) {
-      const GridTransform at_zero = transform({turn, Eigen::Vector2d::Zero()});
-      last_.turn = turn;
-      last_.level = level;
-      last_.valid = true;
-      last_.from = moved(from_walls_[index(level)], at_zero);
-      last_.to = moved(to_walls_[index(level)], at_zero.inverse());
-      last_.unturn = GridTransform();
-      last_.unturn.theta_rad = -at_zero.theta_rad;
+    for (const Turned& kept : turned_) {
+      if (kept.turn == turn && kept.level == level) {
+        return kept;
+      }
     }
-    return last_;
+    Turned& slot = turned_[next_slot_];
+    next_slot_ = (next_slot_ + 1) % kTurnsKept;
+    const GridTransform at_zero = transform({turn, Eigen::Vector2d::Zero()});
+    slot.turn = turn;
+    slot.level = level;
+    moveInto(from_walls_[index(level)], at_zero, slot.from);
+    moveInto(to_walls_[index(level)], at_zero.inverse(), slot.to);
+    slot.unturn = GridTransform();
+    slot.unturn.theta_rad = -at_zero.theta_rad;
+    return slot;
   }
 
   const WallField& from_;
   const WallField& to_;
-  mutable Turned last_;
+  mutable std::array<Turned, kTurnsKept> turned_;  // filled in turn
+  mutable std::size_t next_slot_ = 0;
+  struct Scored {
+    Offset offset;
+    double score = 0.0;
+  };
+  mutable std::vector<Scored> scored_;  // every offset score() summed, in turn
   GridTransform T_;
   Eigen::Vector2d pivot_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d landed_ = Eigen::Vector2d::Zero();
@@ -302,7 +312,7 @@ std::vector<Offset> searchGrid(const OffsetScorer& scorer, const WallAlignmentSe
 // the window.
 Best searchPattern(const OffsetScorer& scorer, const WallAlignmentSettings& settings,
                    const Offset& start) {
-  Best best{start, scorer.score(start, Level::kFine)};
+  Best best{start, scorer.score(start)};
   double turn_step = 0.5 * settings.coarse_turn_step_deg * kDegToRad;
   double shift_step = 0.5 * settings.coarse_shift_cells;
   const double max_turn = settings.max_turn_deg * kDegToRad;
@@ -318,7 +328,7 @@ Best searchPattern(const OffsetScorer& scorer, const WallAlignmentSettings& sett
             next.shift.cwiseAbs().maxCoeff() > settings.max_shift_cells + 1e-9) {
           continue;
         }
-        const double score = scorer.score(next, Level::kFine);
+        const double score = scorer.score(next);
         if (score > best.score) {
           best = {next, score};
           moved = true;
@@ -356,6 +366,32 @@ double WallField::fieldAt(const Eigen::Vector2d& cell, Level level) const {
   const float* high = field.ptr<float>(y0 + 1);
   return (1.0 - fy) * ((1.0 - fx) * low[x0] + fx * low[x0 + 1]) +
          fy * ((1.0 - fx) * high[x0] + fx * high[x0 + 1]);
+}
+
+double WallField::sumAt(const std::vector<Eigen::Vector2d>& cells, const Eigen::Vector2d& shift,
+                        Level level) const {
+  // fieldAt's arithmetic in one loop over the rows of a continuous image: the sum is the same.
+  const cv::Mat& field = level == Level::kCoarse ? coarse_field_ : field_;
+  const float* data = field.ptr<float>(0);
+  const std::size_t stride = field.step1();
+  const int last_x = field.cols - 1;
+  const int last_y = field.rows - 1;
+  double total = 0.0;
+  for (const Eigen::Vector2d& cell : cells) {
+    const Eigen::Vector2d at = cell + shift;
+    const int x0 = floorToInt(at.x());
+    const int y0 = floorToInt(at.y());
+    if (x0 < 0 || y0 < 0 || x0 >= last_x || y0 >= last_y) {
+      continue;
+    }
+    const double fx = at.x() - x0;
+    const double fy = at.y() - y0;
+    const float* low = data + static_cast<std::size_t>(y0) * stride + static_cast<std::size_t>(x0);
+    const float* high = low + stride;
+    total += (1.0 - fy) * ((1.0 - fx) * low[0] + fx * low[1]) +
+             fy * ((1.0 - fx) * high[0] + fx * high[1]);
+  }
+  return total;
 }
 
 bool WallField::isKnown(const Eigen::Vector2d& cell) const {
@@ -420,7 +456,7 @@ WallPeaks wallPeaks(const WallField& from, const WallField& to, const GridTransf
     return {T_to_from, T_to_from};
   }
   const OffsetScorer scorer(from, to, T_to_from, settings);
-  const double at_start = scorer.score({}, Level::kFine);
+  const double at_start = scorer.score({});
   const auto placed = [&](const Best& best) {
     return best.score > at_start ? scorer.transform(best.offset) : T_to_from;
   };

@@ -157,6 +157,31 @@ TEST(WallAlignmentTest, TheFieldIsOneOnWallsFallsWithDistanceAndIsZeroOnUnknownC
   EXPECT_FALSE(field.isKnown(Eigen::Vector2d(-3.0, 200.0)));
 }
 
+TEST(WallAlignmentTest, TheSumOverCellsEqualsTheFieldSummedCellByCell) {
+  const DrawnPair pair = drawnPair();
+  const WallField field(pair.from, SimilaritySettings{}, WallAlignmentSettings{});
+  const double last_x = pair.from.geometry.width - 1.0;
+  const double last_y = pair.from.geometry.height - 1.0;
+  // Walls, cells between them, off the map on every side and on the last row and column (which
+  // count as off the map), at a fractional shift.
+  std::vector<Eigen::Vector2d> cells = {{60.0, 30.0},         {60.3, 31.7},   {-0.6, 40.0},
+                                        {40.0, -0.2},         {last_x, 50.0}, {50.0, last_y},
+                                        {last_x - 0.9, 50.0}, {1e6, -1e6},    {110.25, 29.5}};
+  for (int i = 0; i < 200; ++i) {
+    cells.emplace_back(0.37 * i - 3.0, 0.53 * i - 5.0);
+  }
+  const Eigen::Vector2d shift(0.625, -1.375);
+  for (const WallField::Level level : {WallField::Level::kFine, WallField::Level::kCoarse}) {
+    double expected = 0.0;
+    for (const Eigen::Vector2d& cell : cells) {
+      expected += field.fieldAt(cell + shift, level);
+    }
+    EXPECT_GT(expected, 1.0);
+    EXPECT_EQ(field.sumAt(cells, shift, level), expected);  // the same sum, bit for bit
+  }
+  EXPECT_EQ(field.sumAt({}, shift, WallField::Level::kFine), 0.0);
+}
+
 TEST(WallAlignmentTest, ANearMissOfADrawnRoomIsMovedOntoTheTruth) {
   const DrawnPair pair = drawnPair();
   const SimilaritySettings classes;

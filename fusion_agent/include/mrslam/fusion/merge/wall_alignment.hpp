@@ -74,6 +74,9 @@ class WallField {
             const WallAlignmentSettings& settings);
   /// f of `level` at `cell`, bilinear between cells; 0 off the map.
   double fieldAt(const Eigen::Vector2d& cell, Level level) const;
+  /// The sum of fieldAt(cell + shift, level) over `cells`, summed in their order.
+  double sumAt(const std::vector<Eigen::Vector2d>& cells, const Eigen::Vector2d& shift,
+               Level level) const;
   /// Whether the cell nearest to `cell` is known.
   bool isKnown(const Eigen::Vector2d& cell) const;
   /// Whether a known cell lies within `cells` of the cell nearest to `cell`.
