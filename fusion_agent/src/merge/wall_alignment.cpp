@@ -17,6 +17,23 @@ constexpr double kLeastField = 0.01;  // f below this counts as 0 (d beyond 3σ)
 using Level = WallField::Level;
 using Cells = std::vector<Eigen::Vector2d>;
 
+// A float image of `cols` × `rows` (rows `stride` floats apart) at `cell`, bilinear between
+// cells; 0 off the image, whose last row and column count as off it.
+inline double bilinearAt(const float* data, std::size_t stride, int cols, int rows,
+                         const Eigen::Vector2d& cell) {
+  const int x0 = floorToInt(cell.x());
+  const int y0 = floorToInt(cell.y());
+  if (x0 < 0 || y0 < 0 || x0 + 1 >= cols || y0 + 1 >= rows) {
+    return 0.0;
+  }
+  const double fx = cell.x() - x0;
+  const double fy = cell.y() - y0;
+  const float* low = data + static_cast<std::size_t>(y0) * stride + static_cast<std::size_t>(x0);
+  const float* high = low + stride;
+  return (1.0 - fy) * ((1.0 - fx) * low[0] + fx * low[1]) +
+         fy * ((1.0 - fx) * high[0] + fx * high[1]);
+}
+
 // The walls and the known cells of a map by the classes of block 8 (occupied at least
 // occupied_threshold, free at most free_threshold, unknown between).
 Cells classify(const GridMap& map, const SimilaritySettings& classes, cv::Mat& known) {
@@ -355,41 +372,17 @@ WallField::WallField(const GridMap& map, const SimilaritySettings& classes,
 
 double WallField::fieldAt(const Eigen::Vector2d& cell, Level level) const {
   const cv::Mat& field = level == Level::kCoarse ? coarse_field_ : field_;
-  const int x0 = floorToInt(cell.x());
-  const int y0 = floorToInt(cell.y());
-  if (x0 < 0 || y0 < 0 || x0 + 1 >= field.cols || y0 + 1 >= field.rows) {
-    return 0.0;  // the map's last row and column count as off the map
-  }
-  const double fx = cell.x() - x0;
-  const double fy = cell.y() - y0;
-  const float* low = field.ptr<float>(y0);
-  const float* high = field.ptr<float>(y0 + 1);
-  return (1.0 - fy) * ((1.0 - fx) * low[x0] + fx * low[x0 + 1]) +
-         fy * ((1.0 - fx) * high[x0] + fx * high[x0 + 1]);
+  return bilinearAt(field.ptr<float>(0), field.step1(), field.cols, field.rows, cell);
 }
 
 double WallField::sumAt(const std::vector<Eigen::Vector2d>& cells, const Eigen::Vector2d& shift,
                         Level level) const {
-  // fieldAt's arithmetic in one loop over the rows of a continuous image: the sum is the same.
   const cv::Mat& field = level == Level::kCoarse ? coarse_field_ : field_;
   const float* data = field.ptr<float>(0);
   const std::size_t stride = field.step1();
-  const int last_x = field.cols - 1;
-  const int last_y = field.rows - 1;
   double total = 0.0;
   for (const Eigen::Vector2d& cell : cells) {
-    const Eigen::Vector2d at = cell + shift;
-    const int x0 = floorToInt(at.x());
-    const int y0 = floorToInt(at.y());
-    if (x0 < 0 || y0 < 0 || x0 >= last_x || y0 >= last_y) {
-      continue;
-    }
-    const double fx = at.x() - x0;
-    const double fy = at.y() - y0;
-    const float* low = data + static_cast<std::size_t>(y0) * stride + static_cast<std::size_t>(x0);
-    const float* high = low + stride;
-    total += (1.0 - fy) * ((1.0 - fx) * low[0] + fx * low[1]) +
-             fy * ((1.0 - fx) * high[0] + fx * high[1]);
+    total += bilinearAt(data, stride, field.cols, field.rows, cell + shift);
   }
   return total;
 }
