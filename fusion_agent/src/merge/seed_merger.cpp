@@ -35,10 +35,6 @@ std::string inputRefusal(const GridMap& from, const GridMap& to) {
   return "";
 }
 
-bool sameTransform(const GridTransform& a, const GridTransform& b) {
-  return a.theta_rad == b.theta_rad && a.t_cells == b.t_cells;
-}
-
 }  // namespace
 
 SeedMerger::SeedMerger(const SeedMergerSettings& settings)

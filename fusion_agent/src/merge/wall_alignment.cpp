@@ -160,6 +160,12 @@ struct Offset {
   Eigen::Vector2d shift = Eigen::Vector2d::Zero();
 };
 
+// An offset and W there (of either field's level, as the caller says).
+struct ScoredOffset {
+  Offset offset;
+  double score = 0.0;
+};
+
 // The scored walls of both maps at both levels and the window's parametrisation.
 class OffsetScorer {
  public:
@@ -199,7 +205,7 @@ class OffsetScorer {
   /// W of the narrow field at one offset. Each offset is summed once: the climbs step back onto
   /// offsets scored before, and climbs from several starts meet.
   double score(const Offset& offset) const {
-    for (const Scored& known : scored_) {
+    for (const ScoredOffset& known : scored_) {
       if (known.offset.turn == offset.turn && known.offset.shift == offset.shift) {
         return known.score;
       }
@@ -251,26 +257,12 @@ class OffsetScorer {
   const WallField& to_;
   mutable std::array<Turned, kTurnsKept> turned_;  // filled in turn
   mutable std::size_t next_slot_ = 0;
-  struct Scored {
-    Offset offset;
-    double score = 0.0;
-  };
-  mutable std::vector<Scored> scored_;  // every offset score() summed, in turn
+  mutable std::vector<ScoredOffset> scored_;  // every offset score() summed, in turn
   GridTransform T_;
   Eigen::Vector2d pivot_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d landed_ = Eigen::Vector2d::Zero();
   std::array<Cells, 2> from_walls_;  // coarse, fine
   std::array<Cells, 2> to_walls_;
-};
-
-struct Best {
-  Offset offset;
-  double score = 0.0;
-};
-
-struct GridPoint {
-  Offset offset;
-  double score = 0.0;
 };
 
 // Whether two offsets of the coarse grid lie apart by more than one grid step in turn or shift.
@@ -298,7 +290,7 @@ std::vector<Offset> searchGrid(const OffsetScorer& scorer, const WallAlignmentSe
       }
     }
   }
-  std::vector<GridPoint> points;
+  std::vector<ScoredOffset> points;
   for (int k = 0; k <= 2 * turns; ++k) {
     const int step = (k + 1) / 2 * (k % 2 == 1 ? 1 : -1);  // 0, 1, -1, 2, -2, ...
     const double turn = step * settings.coarse_turn_step_deg * kDegToRad;
@@ -308,9 +300,9 @@ std::vector<Offset> searchGrid(const OffsetScorer& scorer, const WallAlignmentSe
     }
   }
   std::stable_sort(points.begin(), points.end(),
-                   [](const GridPoint& a, const GridPoint& b) { return a.score > b.score; });
+                   [](const ScoredOffset& a, const ScoredOffset& b) { return a.score > b.score; });
   std::vector<Offset> starts;
-  for (const GridPoint& point : points) {
+  for (const ScoredOffset& point : points) {
     if (static_cast<int>(starts.size()) >= std::max(1, settings.starts)) {
       break;
     }
@@ -327,9 +319,9 @@ std::vector<Offset> searchGrid(const OffsetScorer& scorer, const WallAlignmentSe
 // Pattern search of the narrow field from `start`: one step up or down in each of the turn and
 // the two shifts while W rises, then the steps halved, fine_steps times; the offset stays inside
 // the window.
-Best searchPattern(const OffsetScorer& scorer, const WallAlignmentSettings& settings,
-                   const Offset& start) {
-  Best best{start, scorer.score(start)};
+ScoredOffset searchPattern(const OffsetScorer& scorer, const WallAlignmentSettings& settings,
+                           const Offset& start) {
+  ScoredOffset best{start, scorer.score(start)};
   double turn_step = 0.5 * settings.coarse_turn_step_deg * kDegToRad;
   double shift_step = 0.5 * settings.coarse_shift_cells;
   const double max_turn = settings.max_turn_deg * kDegToRad;
@@ -450,14 +442,14 @@ WallPeaks wallPeaks(const WallField& from, const WallField& to, const GridTransf
   }
   const OffsetScorer scorer(from, to, T_to_from, settings);
   const double at_start = scorer.score({});
-  const auto placed = [&](const Best& best) {
+  const auto placed = [&](const ScoredOffset& best) {
     return best.score > at_start ? scorer.transform(best.offset) : T_to_from;
   };
   const std::vector<Offset> starts = searchGrid(scorer, settings);
-  Best highest{{}, at_start};
+  ScoredOffset highest{{}, at_start};
   WallPeaks peaks;
   for (std::size_t i = 0; i < starts.size(); ++i) {
-    const Best climbed = searchPattern(scorer, settings, starts[i]);
+    const ScoredOffset climbed = searchPattern(scorer, settings, starts[i]);
     if (i == 0) {
       peaks.first = placed(climbed);
     }
@@ -499,10 +491,6 @@ double wallTurnShare(const WallField& from, const WallField& to, const GridTrans
 }
 
 namespace {
-
-bool sameTransform(const GridTransform& a, const GridTransform& b) {
-  return a.theta_rad == b.theta_rad && a.t_cells == b.t_cells;
-}
 
 // The turn check: `result` refused when its walls meet as well turned (wallTurnShare) at
 // `highest` or at `first`.

@@ -39,6 +39,11 @@ struct GridTransform {
   }
 };
 
+/// Whether two transforms are equal bit for bit (the same turn and shift, not merely close).
+inline bool sameTransform(const GridTransform& a, const GridTransform& b) {
+  return a.theta_rad == b.theta_rad && a.t_cells == b.t_cells;
+}
+
 /// GridTransform::apply() with the rotation's cosine and sine taken once, for loops over many cells
 /// (the same result, bit for bit).
 class CellMapping {
