@@ -55,10 +55,10 @@ const CropPair kRightMergeWithACleanerSlidFit{
     {{210, 114}, 200, -0.9351607415413894, {17, 5}, {28, 6}},
     {{69, 16}, 205, 1.6566306342069028, {15, 21}, {26, 12}}};
 
-// Case 106 of `--seed 23` (Carpin's robot 2, 55 % overlap): the exhaustive step accepts a room
-// turned by 89° at V 0.979 over about 5000 cells. Its search also found the truth, which fits at
-// V 0.986 over about 7500 cells but is refused on its own by the structure test (0.80 of its
-// overlapping walls meet walls, below 0.88).
+// Case 106 of `--seed 23` (Carpin's robot 2, 55 % overlap): at the structure bar of 0.88 the
+// exhaustive step accepts a room turned by 89° at V 0.979 over about 5000 cells. Its search also
+// found the truth, which fits at V 0.986 over about 7500 cells but is refused on its own by the
+// structure test (0.80 of its overlapping walls meet walls).
 const CropPair kRoomTurnedWithItsTruthUnwalled{
     "carpin-robot2_cast.txt",
     106,
@@ -84,6 +84,12 @@ const CropPair kRightMergeWithALesserAlternative{
 
 std::unique_ptr<MapMerger> chainWith(const std::string& chain_section) {
   return merge_test::chainFrom("chain: {" + chain_section + "}\n");
+}
+
+// The same at the structure bar of 0.88 (merge_test::kStructureBarAt088).
+std::unique_ptr<MapMerger> chainAtBarOf088(const std::string& chain_section) {
+  return merge_test::chainFrom("chain: {" + chain_section + "}\nseed: {" +
+                               merge_test::kStructureBarAt088 + "}\n");
 }
 
 // Merges a case with the check off and with the defaults: off, the chain accepts a transform
@@ -183,14 +189,16 @@ TEST(MergeChainAlternativesTest, AnUnwalledTruthThatOverlapsMoreRefusesAQuarterT
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   const MergeCase merge_case = cut(kRoomTurnedWithItsTruthUnwalled);
   const MergeResult wrong =
-      chainWith("walls_alternative_rate: 0")->merge(merge_case.a, merge_case.b);
+      chainAtBarOf088("walls_alternative_rate: 0")->merge(merge_case.a, merge_case.b);
   ASSERT_TRUE(wrong.accepted) << wrong.reason;
   EXPECT_GT(angleErrorDeg(merge_case, wrong.T_to_from), 80.0);
-  const MergeResult refused = chainWith("")->merge(merge_case.a, merge_case.b);
+  const MergeResult refused = chainAtBarOf088("")->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(refused.accepted);
   EXPECT_NE(refused.reason.find("fails on its own only for the walls it leaves unmet"),
             std::string::npos)
       << refused.reason;
+  // At the default bar the chain refuses the quarter turn without the alternative too.
+  EXPECT_FALSE(chainWith("walls_alternative_rate: 0")->merge(merge_case.a, merge_case.b).accepted);
 }
 
 TEST(MergeChainAlternativesTest, AnUnwalledAlternativeThatOverlapsLessDoesNotRefuse) {

@@ -122,7 +122,11 @@ TEST(MergeChainRivalsTest, TheTwoWingsAreEachOthersRivalsUnlessTheDirtierIsPasse
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   const MergeCase merge_case = cut(kRepeatingWing);
   ASSERT_GT(caseError(merge_case, wrongWing()).distance_cells, 80.0);
-  SeedMergerSettings every_rival;
+  // At the structure bar of 0.88: the wrong wing's walls meet walls less than 0.89 of the time,
+  // so at the default bar it is no rival of any transform (it fails the structure test).
+  SeedMergerSettings bar_of_088;
+  bar_of_088.min_structure_agreement = 0.88;
+  SeedMergerSettings every_rival = bar_of_088;
   every_rival.dirtier_rival_structure = 0.0;
   SeedMerger judge(every_rival);
   const double max_share = judge.settings().max_rival_share;
@@ -139,13 +143,21 @@ TEST(MergeChainRivalsTest, TheTwoWingsAreEachOthersRivalsUnlessTheDirtierIsPasse
             max_share);
   // By default the wrong wing, whose walls meet walls less well and whose cells disagree more
   // often, is no rival of the truth; the truth still rivals the wrong wing.
-  SeedMerger by_default;
+  SeedMerger by_default(bar_of_088);
   EXPECT_LE(
       by_default.rivalShareAgainst(merge_case.a, merge_case.b, merge_case.T_b_a, {wrongWing()}),
       max_share);
   EXPECT_GT(
       by_default.rivalShareAgainst(merge_case.a, merge_case.b, wrongWing(), {merge_case.T_b_a}),
       max_share);
+  SeedMerger at_default_bars;
+  EXPECT_EQ(at_default_bars.rivalShareAgainst(merge_case.a, merge_case.b, merge_case.T_b_a,
+                                              {wrongWing()}),
+            0.0);
+  const MergeResult wing_alone =
+      at_default_bars.judgeHypotheses(merge_case.a, merge_case.b, {wrongWing()});
+  EXPECT_FALSE(wing_alone.accepted);
+  EXPECT_EQ(wing_alone.refusal, MergeRefusal::kStructure) << wing_alone.reason;
 }
 
 TEST(MergeChainRivalsTest, ALaterStepsTransformIsRefusedWhenAnEarlierSlidOneIsItsRival) {
@@ -175,13 +187,15 @@ TEST(MergeChainRivalsTest, AnEarlierSlidTransformThatExplainsLittleDoesNotRefuse
   EXPECT_EQ(result.method, "later");
 }
 
-// The wing case merged by a chain with these `chain:` and `seed:` settings and 16 exhaustive
-// hypotheses.
+// The wing case merged by a chain with these `chain:` and `seed:` settings (over the structure
+// bar of 0.88) and 16 exhaustive hypotheses.
 MergeResult mergeWingWith(const MergeCase& merge_case, const std::string& chain_settings,
                           const std::string& seed_settings = "dirtier_rival_structure: 0") {
+  const std::string seed = merge_test::kStructureBarAt088 +
+                           (seed_settings.empty() ? std::string() : ", " + seed_settings);
   return makeMergerFrom("chain", Config::loadString("chain: {" + chain_settings +
                                                         "}\nexhaustive: {hypotheses: 16}\n" +
-                                                        "seed: {" + seed_settings + "}\n",
+                                                        "seed: {" + seed + "}\n",
                                                     "m.yaml"))
       ->merge(merge_case.a, merge_case.b);
 }

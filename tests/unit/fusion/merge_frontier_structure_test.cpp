@@ -69,7 +69,7 @@ TEST(MergeFrontierStructureTest, WallsTheOtherRobotNeverMarkedDoNotRefuseTheTrut
   const MergeResult refused = judgeIdentity(from, to, without);
   EXPECT_FALSE(refused.accepted);
   EXPECT_EQ(refused.refusal, MergeRefusal::kStructure) << refused.reason;
-  EXPECT_NE(refused.reason.find("meet walls (below 0.88; 1 off the other map's frontier)"),
+  EXPECT_NE(refused.reason.find("meet walls (below 0.89; 1 off the other map's frontier)"),
             std::string::npos)
       << refused.reason;
 }
@@ -95,7 +95,7 @@ TEST(MergeFrontierStructureTest, WallsOnOpenFloorStillRefuse) {
       judgeIdentity(merge_test::handBuiltRooms(), roomsWithoutInnerWalls(), lower);
   EXPECT_FALSE(refused.accepted);
   EXPECT_EQ(refused.refusal, MergeRefusal::kStructure) << refused.reason;
-  EXPECT_NE(refused.reason.find("only 0.807 of the overlapping walls meet walls (below 0.88; 0.807 "
+  EXPECT_NE(refused.reason.find("only 0.807 of the overlapping walls meet walls (below 0.89; 0.807 "
                                 "off the other map's frontier)"),
             std::string::npos)
       << refused.reason;

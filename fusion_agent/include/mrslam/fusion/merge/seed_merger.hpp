@@ -161,7 +161,7 @@ struct SeedMergerSettings {
   /// at V ≥ clean_small_overlap_min_v (> 1: off).
   double clean_small_overlap_structure = 0.93;
   double clean_small_overlap_min_v = 0.955;
-  double min_structure_agreement = 0.88;  ///< least share of walls landing on walls
+  double min_structure_agreement = 0.89;  ///< least share of walls landing on walls
   /// ... or at least this share with the walls on the other map's frontier left out (free cells
   /// next to unknown ones: a wall that robot never marked; > 1: off).
   double min_structure_off_frontier = 0.88;
