@@ -122,8 +122,7 @@ TEST(MergeChainRivalsTest, TheTwoWingsAreEachOthersRivalsUnlessTheDirtierIsPasse
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   const MergeCase merge_case = cut(kRepeatingWing);
   ASSERT_GT(caseError(merge_case, wrongWing()).distance_cells, 80.0);
-  // At the structure bar of 0.88: the wrong wing's walls meet walls less than 0.89 of the time,
-  // so at the default bar it is no rival of any transform (it fails the structure test).
+  // At the structure bar of 0.88: the wrong wing's walls meet walls less than 0.89 of the time.
   SeedMergerSettings bar_of_088;
   bar_of_088.min_structure_agreement = 0.88;
   SeedMergerSettings every_rival = bar_of_088;
@@ -141,8 +140,9 @@ TEST(MergeChainRivalsTest, TheTwoWingsAreEachOthersRivalsUnlessTheDirtierIsPasse
   EXPECT_LE(judge.rivalShareAgainst(merge_case.a, merge_case.b, merge_case.T_b_a,
                                     {quarterTurned(merge_case)}),
             max_share);
-  // By default the wrong wing, whose walls meet walls less well and whose cells disagree more
-  // often, is no rival of the truth; the truth still rivals the wrong wing.
+  // With the dirtier rivals passed over (the default), the wrong wing, whose walls meet walls less
+  // well and whose cells disagree more often, is no rival of the truth; the truth still rivals the
+  // wrong wing.
   SeedMerger by_default(bar_of_088);
   EXPECT_LE(
       by_default.rivalShareAgainst(merge_case.a, merge_case.b, merge_case.T_b_a, {wrongWing()}),
@@ -150,12 +150,13 @@ TEST(MergeChainRivalsTest, TheTwoWingsAreEachOthersRivalsUnlessTheDirtierIsPasse
   EXPECT_GT(
       by_default.rivalShareAgainst(merge_case.a, merge_case.b, wrongWing(), {merge_case.T_b_a}),
       max_share);
-  SeedMerger at_default_bars;
-  EXPECT_EQ(at_default_bars.rivalShareAgainst(merge_case.a, merge_case.b, merge_case.T_b_a,
-                                              {wrongWing()}),
-            0.0);
+  // At the default bar the wrong wing fails the structure test on its own: no rival at all.
+  SeedMerger at_default_bar;
+  EXPECT_EQ(
+      at_default_bar.rivalShareAgainst(merge_case.a, merge_case.b, merge_case.T_b_a, {wrongWing()}),
+      0.0);
   const MergeResult wing_alone =
-      at_default_bars.judgeHypotheses(merge_case.a, merge_case.b, {wrongWing()});
+      at_default_bar.judgeHypotheses(merge_case.a, merge_case.b, {wrongWing()});
   EXPECT_FALSE(wing_alone.accepted);
   EXPECT_EQ(wing_alone.refusal, MergeRefusal::kStructure) << wing_alone.reason;
 }
