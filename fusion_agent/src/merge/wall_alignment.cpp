@@ -363,13 +363,13 @@ WallField::WallField(const GridMap& map, const SimilaritySettings& classes,
 }
 
 double WallField::fieldAt(const Eigen::Vector2d& cell, Level level) const {
-  const cv::Mat& field = level == Level::kCoarse ? coarse_field_ : field_;
+  const cv::Mat& field = fieldOf(level);
   return bilinearAt(field.ptr<float>(0), field.step1(), field.cols, field.rows, cell);
 }
 
 double WallField::sumAt(const std::vector<Eigen::Vector2d>& cells, const Eigen::Vector2d& shift,
                         Level level) const {
-  const cv::Mat& field = level == Level::kCoarse ? coarse_field_ : field_;
+  const cv::Mat& field = fieldOf(level);
   const float* data = field.ptr<float>(0);
   const std::size_t stride = field.step1();
   double total = 0.0;

@@ -85,6 +85,10 @@ class WallField {
   const std::vector<Eigen::Vector2d>& walls() const { return walls_; }
 
  private:
+  /// The field of `level`.
+  const cv::Mat& fieldOf(Level level) const {
+    return level == Level::kCoarse ? coarse_field_ : field_;
+  }
   std::vector<Eigen::Vector2d> walls_;
   cv::Mat field_;              // CV_32F, f of every cell (sigma_cells), 0 on unknown cells
   cv::Mat coarse_field_;       // CV_32F, the same with coarse_sigma_cells
