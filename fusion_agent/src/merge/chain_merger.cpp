@@ -21,6 +21,52 @@ double disagreementRate(const OverlapScore& overlap) {
   return overlap.overlap() == 0 ? 1.0 : 1.0 - overlap.verification();
 }
 
+// The known cells of every other row and column of `from` (a quarter of them), to estimate the
+// disagreement rate (1 - V) of many placements cheaply.
+class SampledCells {
+ public:
+  explicit SampledCells(const GridMap& from) {
+    constexpr int kStride = 2;
+    for (int y = 0; y < from.geometry.height; y += kStride) {
+      for (int x = 0; x < from.geometry.width; x += kStride) {
+        const CellClass known = classOf(from.at(x, y));
+        if (known != CellClass::kNone) {
+          cells_.push_back({Eigen::Vector2d(x, y), known});
+        }
+      }
+    }
+  }
+
+  /// The share of the sampled cells landing on known cells of `to` whose class differs; 1 when
+  /// none lands on a known cell.
+  double disagreementRate(const GridMap& to, const GridTransform& T_to_from) const {
+    const CellMapping to_cell(T_to_from);
+    long long agree = 0;
+    long long disagree = 0;
+    for (const Sample& sample : cells_) {
+      const Eigen::Vector2d there = to_cell(sample.cell);
+      const int to_x = roundToInt(there.x());
+      const int to_y = roundToInt(there.y());
+      if (!to.geometry.contains(to_x, to_y)) {
+        continue;
+      }
+      const CellClass theirs = classOf(to.at(to_x, to_y));
+      if (theirs != CellClass::kNone) {
+        (theirs == sample.known ? agree : disagree) += 1;
+      }
+    }
+    const long long overlap = agree + disagree;
+    return overlap == 0 ? 1.0 : static_cast<double>(disagree) / static_cast<double>(overlap);
+  }
+
+ private:
+  struct Sample {
+    Eigen::Vector2d cell;
+    CellClass known;
+  };
+  std::vector<Sample> cells_;
+};
+
 // How far apart two transforms put `pivot` (a cell of `from`), cells.
 double cellsApartAt(const GridTransform& T_a, const GridTransform& T_b,
                     const Eigen::Vector2d& pivot) {
@@ -77,9 +123,10 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
   std::string reasons;
   int trials = 0;
   MergeResult last;
-  std::vector<GridTransform> earlier;   // transforms earlier steps refused for a slide alone
-  std::vector<GridTransform> searched;  // every step's search hypotheses so far
-  SecondOpinion second;                 // the second-opinion step's result, when it ran already
+  std::vector<GridTransform> earlier;    // transforms earlier steps refused for a slide alone
+  std::vector<GridTransform> searched;   // every step's search hypotheses so far
+  std::vector<GridTransform> undecided;  // placements an earlier step refused for a cleaner one
+  SecondOpinion second;                  // the second-opinion step's result, when it ran already
   for (const auto& step : steps_) {
     MergeResult result = step.get() == second.step ? second.result : step->merge(from, to);
     if (step->name() == settings_.second_opinion_step) {
@@ -87,6 +134,9 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
     }
     trials += result.trials;
     searched.insert(searched.end(), result.hypotheses.begin(), result.hypotheses.end());
+    if (result.accepted && !undecided.empty()) {
+      judgeAgainstUndecided(from, undecided, result);
+    }
     if (result.accepted && !earlier.empty()) {
       judgeAgainstEarlier(from, to, earlier, result);
     }
@@ -99,7 +149,7 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
     if (result.accepted &&
         (settings_.cleaner_alternative_rate > 0.0 || settings_.slid_alternative_rate > 0.0 ||
          settings_.walls_alternative_rate > 0.0)) {
-      judgeAgainstAlternatives(from, to, searched, result);
+      judgeAgainstAlternatives(from, to, searched, undecided, result);
     }
     if (result.accepted) {
       askSecondOpinion(from, to, *step, second, result);
@@ -134,6 +184,24 @@ void ChainMerger::judgeAgainstEarlier(const GridMap& from, const GridMap& to,
   }
 }
 
+void ChainMerger::judgeAgainstUndecided(const GridMap& from,
+                                        const std::vector<GridTransform>& undecided,
+                                        MergeResult& result) const {
+  const Eigen::Vector2d pivot = knownCentroid(from);
+  const double alike_rad = settings_.undecided_deg * M_PI / 180.0;
+  for (const GridTransform& T_undecided : undecided) {
+    if (turnBetween(T_undecided, result.T_to_from) <= alike_rad &&
+        landsWithin(T_undecided, result.T_to_from, pivot, settings_.alternative_cells)) {
+      result.accepted = false;
+      result.refusal = MergeRefusal::kRival;
+      result.reason =
+          "an earlier step found this placement and another, turned or moved elsewhere, that fits "
+          "more cleanly: the maps do not tell the two apart";
+      return;
+    }
+  }
+}
+
 void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, MergeResult& result) {
   GlobalSearchSettings sweep;
   sweep.rotation_step_rad = settings_.sweep_step_deg * M_PI / 180.0;
@@ -152,6 +220,38 @@ void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, Merg
         "a transform elsewhere at the same rotation explains the overlap more cleanly (a building "
         "that repeats)";
   }
+}
+
+std::vector<GridTransform> ChainMerger::turnedSweepPeaks(const GridMap& from, const GridMap& to,
+                                                         const GridTransform& T_to_from) const {
+  std::vector<GridTransform> peaks;
+  if (settings_.alternative_sweep_degrees.empty()) {
+    return peaks;
+  }
+  GlobalSearchSettings sweep;
+  sweep.rotation_step_rad = settings_.sweep_step_deg * M_PI / 180.0;
+  sweep.exact_rotations = true;
+  for (const double degrees : settings_.alternative_sweep_degrees) {
+    sweep.only_rotations_rad.push_back(T_to_from.theta_rad + degrees * M_PI / 180.0);
+  }
+  sweep.peaks_per_rotation = settings_.alternative_sweep_peaks;
+  sweep.kept_hypotheses = settings_.alternative_sweep_peaks;
+  sweep.free_agreement_hypotheses = 0;
+  sweep.coarse_cells = settings_.sweep_coarse_cells;
+  // Peaks of one turn that land within alternative_cells of each other would be judged alike:
+  // the better one stands.
+  const Eigen::Vector2d pivot = knownCentroid(from);
+  const double alike_rad = 2.5 * sweep.rotation_step_rad;
+  for (const GlobalHypothesis& peak : globalSearch(from, to, sweep, judge_.settings().similarity)) {
+    const bool alike = std::any_of(peaks.begin(), peaks.end(), [&](const GridTransform& kept) {
+      return turnBetween(kept, peak.T_to_from) <= alike_rad &&
+             landsWithin(kept, peak.T_to_from, pivot, settings_.alternative_cells);
+    });
+    if (!alike) {
+      peaks.push_back(peak.T_to_from);
+    }
+  }
+  return peaks;
 }
 
 namespace {
@@ -270,39 +370,72 @@ ChainMerger::AlternativeBar ChainMerger::alternativeBar(const MergeResult& alone
   }
 }
 
+bool ChainMerger::refusedForAlternative(const GridMap& from, const GridMap& to,
+                                        const GridTransform& hypothesis, const Accepted& accepted,
+                                        std::vector<GridTransform>& judged,
+                                        std::vector<GridTransform>& undecided,
+                                        MergeResult& result) {
+  const MergeResult alone = judge_.judgeHypotheses(from, to, {hypothesis});
+  judged.push_back(hypothesis);
+  judged.push_back(alone.T_to_from);
+  const AlternativeBar bar = alternativeBar(alone);
+  if (bar.rate <= 0.0 ||
+      landsWithin(result.T_to_from, alone.T_to_from, accepted.pivot, settings_.alternative_cells)) {
+    return false;
+  }
+  const OverlapScore there = scoreOverlap(from, to, alone.T_to_from);
+  const double ratio = disagreementRate(there) / accepted.rate;
+  const bool overlaps_enough = static_cast<double>(there.overlap()) >=
+                               bar.overlap * static_cast<double>(accepted.overlap.overlap());
+  if (ratio <= bar.rate && overlaps_enough) {
+    undecided.push_back(result.T_to_from);
+    undecided.push_back(alone.T_to_from);
+    refuseForAlternative(accepted.pivot, alone, ratio, result);
+    return true;
+  }
+  return false;
+}
+
 void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
                                            const std::vector<GridTransform>& searched,
+                                           std::vector<GridTransform>& undecided,
                                            MergeResult& result) {
-  const Eigen::Vector2d pivot = knownCentroid(from);
-  const OverlapScore accepted = scoreOverlap(from, to, result.T_to_from);
-  const double rate = disagreementRate(accepted);
-  if (rate <= 0.0) {
+  Accepted accepted;
+  accepted.pivot = knownCentroid(from);
+  accepted.overlap = scoreOverlap(from, to, result.T_to_from);
+  accepted.rate = disagreementRate(accepted.overlap);
+  if (accepted.rate <= 0.0) {
     return;  // no placement fits more cleanly than one without a single disagreement
   }
   std::vector<GridTransform> judged;  // hypotheses judged on their own, and where they settled
+  const auto judgedAlready = [&](const GridTransform& hypothesis) {
+    return landsWithin(result.T_to_from, hypothesis, accepted.pivot, settings_.alternative_cells) ||
+           std::any_of(judged.begin(), judged.end(), [&](const GridTransform& T) {
+             return landsWithin(T, hypothesis, accepted.pivot, settings_.alternative_cells);
+           });
+  };
+  const double bar = settings_.alternative_prefilter_rate;
   for (const GridTransform& hypothesis : searched) {
-    const bool seen = std::any_of(judged.begin(), judged.end(), [&](const GridTransform& T) {
-      return landsWithin(T, hypothesis, pivot, settings_.alternative_cells);
-    });
-    if (seen || landsWithin(result.T_to_from, hypothesis, pivot, settings_.alternative_cells) ||
-        disagreementRate(scoreOverlap(from, to, hypothesis)) >
-            settings_.alternative_prefilter_rate * rate) {
+    if (judgedAlready(hypothesis) ||
+        disagreementRate(scoreOverlap(from, to, hypothesis)) > bar * accepted.rate) {
       continue;
     }
-    const MergeResult alone = judge_.judgeHypotheses(from, to, {hypothesis});
-    judged.push_back(hypothesis);
-    judged.push_back(alone.T_to_from);
-    const AlternativeBar bar = alternativeBar(alone);
-    if (bar.rate <= 0.0 ||
-        landsWithin(result.T_to_from, alone.T_to_from, pivot, settings_.alternative_cells)) {
+    if (refusedForAlternative(from, to, hypothesis, accepted, judged, undecided, result)) {
+      return;
+    }
+  }
+  const std::vector<GridTransform> swept = turnedSweepPeaks(from, to, result.T_to_from);
+  if (swept.empty()) {
+    return;
+  }
+  // The sweep's many peaks are prefiltered on a sample of `from`'s cells, the accepted one too.
+  const SampledCells sampled(from);
+  const double sampled_rate = sampled.disagreementRate(to, result.T_to_from);
+  for (const GridTransform& peak : swept) {
+    if (judgedAlready(peak) || sampled.disagreementRate(to, peak) > bar * sampled_rate) {
       continue;
     }
-    const OverlapScore there = scoreOverlap(from, to, alone.T_to_from);
-    const double ratio = disagreementRate(there) / rate;
-    const bool overlaps_enough = static_cast<double>(there.overlap()) >=
-                                 bar.overlap * static_cast<double>(accepted.overlap());
-    if (ratio <= bar.rate && overlaps_enough) {
-      refuseForAlternative(pivot, alone, ratio, result);
+    if (refusedForAlternative(from, to, peak, accepted, judged, undecided, result)) {
       return;
     }
   }
@@ -370,6 +503,11 @@ ChainSettings loadChainSettings(const Config& chain) {
   s.alternative_cells = chain.getDouble("alternative_cells", s.alternative_cells, {0.0, 1000.0});
   s.alternative_prefilter_rate =
       chain.getDouble("alternative_prefilter_rate", s.alternative_prefilter_rate, {0.0, 100.0});
+  s.alternative_sweep_degrees =
+      chain.getDoubles("alternative_sweep_degrees", s.alternative_sweep_degrees, 0, {1.0, 359.0});
+  s.alternative_sweep_peaks = static_cast<int>(
+      chain.getInt("alternative_sweep_peaks", s.alternative_sweep_peaks, {1, 100}));
+  s.undecided_deg = chain.getDouble("undecided_deg", s.undecided_deg, {0.0, 180.0});
   s.second_opinion_step = chain.getString("second_opinion_step", s.second_opinion_step);
   s.second_opinion_cells =
       chain.getDouble("second_opinion_cells", s.second_opinion_cells, {0.0, 1000.0});

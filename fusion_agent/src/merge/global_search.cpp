@@ -231,6 +231,15 @@ std::vector<RotationPeaks> sweepEachRotation(const Sweep& sweep,
   const int coarse = std::max(1, settings.coarse_cells);
   const TargetSpectra target = targetSpectra(wallTarget(sweep, settings), sweep.to.occupied,
                                              sweep.by_free ? sweep.to.free : cv::Mat(), sweep.size);
+  if (settings.exact_rotations) {
+    std::vector<RotationPeaks> peaks;
+    for (const double theta : settings.only_rotations_rad) {
+      const auto [walls, free] = turnedSpectra(sweep, theta);
+      peaks.push_back(
+          peaksOf(sweep, theta, coarse, rotationScores(target, walls, free, settings), settings));
+    }
+    return peaks;
+  }
   std::vector<RotationPeaks> peaks(static_cast<std::size_t>(sweep.rotations));
   for (int k = 0; k < sweep.rotations; ++k) {
     const double theta = 2.0 * M_PI * k / sweep.rotations;

@@ -76,6 +76,33 @@ TEST(MergeSeedGlobalFineTest, TheSweepTurnsOnlyNearTheWantedRotations) {
 // 109: only the finer sweep proposes the truth, where agr - dis slides along a corridor (runner-up
 // 0.97 of the best) while the walls fix the shift (0.82). 181: the truth's only rival overlapped
 // by 164 known cells, far below the overlap bar, and refused it by its wall balance.
+TEST(MergeSeedGlobalFineTest, ExactRotationsTurnByThoseAnglesAlone) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
+  const MergeCase merge_case = cut({"carpin-robot2_cast.txt",
+                                    109,
+                                    {{268, 61}, 228, 3.041856795968136, {23, 16}, {9, 3}},
+                                    {{176, 115}, 170, -1.7351036680437453, {37, 32}, {20, 22}}});
+  // The truth's rotation and its half turn, neither on the sweep's grid of 3°.
+  const double truth = merge_case.T_b_a.theta_rad;
+  GlobalSearchSettings settings;
+  settings.only_rotations_rad = {truth, truth + M_PI};
+  settings.exact_rotations = true;
+  settings.kept_hypotheses = 24;
+  const std::vector<GlobalHypothesis> hypotheses =
+      globalSearch(merge_case.a, merge_case.b, settings, SimilaritySettings{});
+  ASSERT_FALSE(hypotheses.empty());
+  bool near_truth = false;
+  for (const GlobalHypothesis& hypothesis : hypotheses) {
+    const double from_truth =
+        std::abs(std::remainder(hypothesis.T_to_from.theta_rad - truth, M_PI));
+    EXPECT_LT(from_truth, 1e-9);
+    const CaseError error = caseError(merge_case, hypothesis.T_to_from);
+    near_truth = near_truth ||
+                 (error.distance_cells <= 2.0 * settings.coarse_cells && error.angle_rad < 1e-9);
+  }
+  EXPECT_TRUE(near_truth) << "no peak within two coarse cells of the truth";
+}
+
 TEST(MergeSeedGlobalFineTest, CropsFoundByTheFinerSweepMergeWithinTwoCellsAndOneDegree) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
   expectMergedWithinTwoCellsAndOneDegree(

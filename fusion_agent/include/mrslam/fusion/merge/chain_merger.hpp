@@ -11,11 +11,16 @@
 // explains the overlap more cleanly (a building whose rooms repeat along a corridor). With
 // `cleaner_alternative_rate`, the hypotheses of the steps' own searches at every rotation
 // (MergeResult::hypotheses) are judged alone, and one that passes elsewhere and fits more cleanly
-// refuses the merge (a hall that looks alike turned by a quarter or a half). With
-// `walls_alternative_rate`, so does one refused alone only by the structure test that fits more
-// cleanly over more known cells (`walls_alternative_overlap`). With `turned_rival_degrees`, the
-// overlap turned by a quarter or a half about its centre and placed again refuses the merge when
-// it explains clearly more of it about as cleanly (a room that fits turned as well). With
+// refuses the merge (a hall that looks alike turned by a quarter or a half); with
+// `alternative_sweep_degrees`, so do the peaks of a sweep over every translation at the accepted
+// rotation turned by those angles (the right turn of such a hall where it overlaps too little to
+// be among the search's hypotheses). With `walls_alternative_rate`, so does one refused alone
+// only by the structure test that fits more cleanly over more known cells
+// (`walls_alternative_overlap`). A transform so refused and its alternative stay undecided: a
+// later step's transform near either is refused too (`undecided_deg`). With
+// `turned_rival_degrees`, the overlap turned by a quarter or a half about its centre and placed
+// again refuses the merge when it explains clearly more of it about as cleanly (a room that fits
+// turned as well). With
 // `second_opinion_step`, a transform whose turn check came near its bar is refused when that step
 // (the seed pipeline), run as well, ends within the wall alignment's window of it and finds there
 // that the walls do not fix the rotation.
@@ -27,6 +32,7 @@
 
 #include "mrslam/common/config.hpp"
 #include "mrslam/fusion/merge/map_merger.hpp"
+#include "mrslam/fusion/merge/overlap_score.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
 
 namespace mrslam::fusion {
@@ -66,6 +72,18 @@ struct ChainSettings {
   /// Only hypotheses whose known cells, as found, disagree at most this many times as often as
   /// the accepted transform's are judged on their own (each judgement refines a hypothesis).
   double alternative_prefilter_rate = 2.0;
+  /// The alternatives also hold the best peaks (alternative_sweep_peaks) of a sweep over every
+  /// translation at the accepted rotation turned by exactly each of these angles (degrees): the
+  /// turn of a hall that looks alike whose right placement overlaps too little to be among the
+  /// search's own hypotheses. They are judged as those are, at the same bars: where a turned
+  /// placement passes alone and fits more cleanly, the maps do not tell the turn, whichever of
+  /// the two is right (docs/merge_tuning.md: most merges so refused were right). Empty: off.
+  std::vector<double> alternative_sweep_degrees = {90.0, 180.0, 270.0};
+  int alternative_sweep_peaks = 100;  ///< ... the best peaks of that sweep kept
+  /// A step's transform refused for a cleaner alternative and that alternative are undecided: a
+  /// later step's transform within alternative_cells and this many degrees of either is refused
+  /// too (the maps did not tell them apart).
+  double undecided_deg = 5.0;
   /// An accepted transform is refused when the overlap turned by one of these angles (degrees)
   /// about its centre and placed by the ±δ search explains turned_rival_similarity times its
   /// agr - dis or more while its known cells disagree at most turned_rival_rate times as often:
@@ -144,11 +162,40 @@ class ChainMerger : public MapMerger {
   /// walls_alternative_overlap) when only its walls are unmet, else no bar.
   AlternativeBar alternativeBar(const MergeResult& alone) const;
 
+  /// The accepted transform as its alternatives are weighed against it.
+  struct Accepted {
+    Eigen::Vector2d pivot;  ///< the cell of `from` where placements are compared
+    OverlapScore overlap;   ///< its overlap's counts
+    double rate = 0.0;      ///< its known cells' disagreement rate
+  };
+  /// Judges `hypothesis` alone (recording it and where it settled in `judged`); refuses `result`
+  /// and returns true when it lands elsewhere and meets its alternativeBar(), adding both
+  /// placements to `undecided`.
+  bool refusedForAlternative(const GridMap& from, const GridMap& to,
+                             const GridTransform& hypothesis, const Accepted& accepted,
+                             std::vector<GridTransform>& judged,
+                             std::vector<GridTransform>& undecided, MergeResult& result);
+
   /// With cleaner_alternative_rate (or the slid or walls rates): refuses the accepted `result`
-  /// when one of the `searched` hypotheses, judged alone, lands elsewhere and meets its
-  /// alternativeBar().
+  /// when one of the `searched` hypotheses, then one of the turnedSweepPeaks(), judged alone,
+  /// lands elsewhere and meets its alternativeBar(). The searched ones are prefiltered by their
+  /// disagreement rate over every known cell, the swept ones over a sample of them
+  /// (alternative_prefilter_rate times the accepted transform's, measured alike). The refused
+  /// transform and the alternative that refused it are added to `undecided`.
   void judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
-                                const std::vector<GridTransform>& searched, MergeResult& result);
+                                const std::vector<GridTransform>& searched,
+                                std::vector<GridTransform>& undecided, MergeResult& result);
+
+  /// Refuses the accepted `result` when it lands within alternative_cells and undecided_deg of
+  /// one of the `undecided` placements: an earlier step's transform refused for a cleaner
+  /// alternative, or that alternative. Neither is chosen by a later step.
+  void judgeAgainstUndecided(const GridMap& from, const std::vector<GridTransform>& undecided,
+                             MergeResult& result) const;
+
+  /// With alternative_sweep_degrees: the best peaks of the sweep at the accepted rotation turned
+  /// by those angles.
+  std::vector<GridTransform> turnedSweepPeaks(const GridMap& from, const GridMap& to,
+                                              const GridTransform& T_to_from) const;
 
   std::vector<std::unique_ptr<MapMerger>> steps_;
   ChainSettings settings_;

@@ -47,6 +47,9 @@ struct GlobalSearchSettings {
   int free_agreement_hypotheses = 6;   ///< step 5: best peaks of that score returned (0: off)
   std::vector<double>
       only_rotations_rad;  ///< when not empty: the sweep's rotations near these only
+  /// With only_rotations_rad: turn `from` by exactly those rotations instead of the sweep's
+  /// rotations within one step of them.
+  bool exact_rotations = false;
   /// When every rotation is swept and their count is a multiple of 4: the images of `from` are
   /// turned and transformed for the first quarter turn only, each other rotation correlated with
   /// `to` turned back by whole quarter turns instead (a square DFT). The same scores up to
