@@ -43,8 +43,8 @@ const CropPair kCrossingTurnedByAQuarter{"freiburg-aces.pgm",
                                          {{716, 757}, 235, 1.3831839998055617, {3, 14}, {5, 13}}};
 
 // Case 129 of `--seed 14` (ACES, 26 % overlap): right merges at V 0.970 over about 3500 known
-// cells, while the corridors turned by 91° fit at V 0.991 over about 2300: ACES repeats turned as
-// well: the turned placement passes alone and disagrees 0.29 times as often.
+// cells, while the corridors turned by 91° fit at V 0.991 over about 2300 (ACES repeats turned as
+// well): the turned placement passes alone and disagrees 0.29 times as often.
 const CropPair kRightMergeWithACleanerTurn{
     "freiburg-aces.pgm",
     129,
