@@ -21,50 +21,28 @@ double disagreementRate(const OverlapScore& overlap) {
   return overlap.overlap() == 0 ? 1.0 : 1.0 - overlap.verification();
 }
 
-// The known cells of every other row and column of `from` (a quarter of them), to estimate the
-// disagreement rate (1 - V) of many placements cheaply.
-class SampledCells {
+// Every other row and column of `from`'s known cells (a quarter of them) against `to`'s codes,
+// to estimate the disagreement rate (1 - V) of many placements cheaply.
+class SampledComparison {
  public:
-  explicit SampledCells(const GridMap& from) {
-    constexpr int kStride = 2;
-    for (int y = 0; y < from.geometry.height; y += kStride) {
-      for (int x = 0; x < from.geometry.width; x += kStride) {
-        const CellClass known = classOf(from.at(x, y));
-        if (known != CellClass::kNone) {
-          cells_.push_back({Eigen::Vector2d(x, y), known});
-        }
+  SampledComparison(const GridMap& from, const GridMap& to, const SimilaritySettings& classes)
+      : tables_(classes), to_(codeImage(to, 0, tables_)) {
+    for (const CellSample& known : knownCells(from, tables_)) {
+      if (known.x % 2 == 0 && known.y % 2 == 0) {
+        samples_.push_back(known);
       }
     }
   }
 
-  /// The share of the sampled cells landing on known cells of `to` whose class differs; 1 when
-  /// none lands on a known cell.
-  double disagreementRate(const GridMap& to, const GridTransform& T_to_from) const {
-    const CellMapping to_cell(T_to_from);
-    long long agree = 0;
-    long long disagree = 0;
-    for (const Sample& sample : cells_) {
-      const Eigen::Vector2d there = to_cell(sample.cell);
-      const int to_x = roundToInt(there.x());
-      const int to_y = roundToInt(there.y());
-      if (!to.geometry.contains(to_x, to_y)) {
-        continue;
-      }
-      const CellClass theirs = classOf(to.at(to_x, to_y));
-      if (theirs != CellClass::kNone) {
-        (theirs == sample.known ? agree : disagree) += 1;
-      }
-    }
-    const long long overlap = agree + disagree;
-    return overlap == 0 ? 1.0 : static_cast<double>(disagree) / static_cast<double>(overlap);
+  /// 1 - V of the samples placed by T_to_from; 1 when none lands on a known cell of `to`.
+  double disagreementRate(const GridTransform& T_to_from) const {
+    return 1.0 - verificationIndex(compareAt(samples_, to_, T_to_from, tables_, false));
   }
 
  private:
-  struct Sample {
-    Eigen::Vector2d cell;
-    CellClass known;
-  };
-  std::vector<Sample> cells_;
+  ComparisonTables tables_;
+  CodeImage to_;
+  std::vector<CellSample> samples_;
 };
 
 // How far apart two transforms put `pivot` (a cell of `from`), cells.
@@ -429,10 +407,10 @@ void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& t
     return;
   }
   // The sweep's many peaks are prefiltered on a sample of `from`'s cells, the accepted one too.
-  const SampledCells sampled(from);
-  const double sampled_rate = sampled.disagreementRate(to, result.T_to_from);
+  const SampledComparison sampled(from, to, judge_.settings().similarity);
+  const double sampled_rate = sampled.disagreementRate(result.T_to_from);
   for (const GridTransform& peak : swept) {
-    if (judgedAlready(peak) || sampled.disagreementRate(to, peak) > bar * sampled_rate) {
+    if (judgedAlready(peak) || sampled.disagreementRate(peak) > bar * sampled_rate) {
       continue;
     }
     if (refusedForAlternative(from, to, peak, accepted, judged, undecided, result)) {

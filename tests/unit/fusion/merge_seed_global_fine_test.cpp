@@ -18,6 +18,13 @@ constexpr double kDegree = M_PI / 180.0;
 using merge_test::CropPair;
 using merge_test::cut;
 
+// Case 109: only the finer sweep proposes the truth (below).
+const CropPair kOnlyTheFinerSweepFindsIt{
+    "carpin-robot2_cast.txt",
+    109,
+    {{268, 61}, 228, 3.041856795968136, {23, 16}, {9, 3}},
+    {{176, 115}, 170, -1.7351036680437453, {37, 32}, {20, 22}}};
+
 void expectMergedWithinTwoCellsAndOneDegree(const CropPair& pair) {
   SeedMerger merger;
   merge_test::expectMergedWithinTwoCellsAndOneDegree(pair, merger);
@@ -57,10 +64,7 @@ TEST(MergeSeedGlobalFineTest, SettingsReadTheNewKeys) {
 
 TEST(MergeSeedGlobalFineTest, TheSweepTurnsOnlyNearTheWantedRotations) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
-  const MergeCase merge_case = cut({"carpin-robot2_cast.txt",
-                                    109,
-                                    {{268, 61}, 228, 3.041856795968136, {23, 16}, {9, 3}},
-                                    {{176, 115}, 170, -1.7351036680437453, {37, 32}, {20, 22}}});
+  const MergeCase merge_case = cut(kOnlyTheFinerSweepFindsIt);
   GlobalSearchSettings settings;
   settings.only_rotations_rad = {merge_case.T_b_a.theta_rad};
   const std::vector<GlobalHypothesis> hypotheses =
@@ -78,10 +82,7 @@ TEST(MergeSeedGlobalFineTest, TheSweepTurnsOnlyNearTheWantedRotations) {
 // by 164 known cells, far below the overlap bar, and refused it by its wall balance.
 TEST(MergeSeedGlobalFineTest, ExactRotationsTurnByThoseAnglesAlone) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
-  const MergeCase merge_case = cut({"carpin-robot2_cast.txt",
-                                    109,
-                                    {{268, 61}, 228, 3.041856795968136, {23, 16}, {9, 3}},
-                                    {{176, 115}, 170, -1.7351036680437453, {37, 32}, {20, 22}}});
+  const MergeCase merge_case = cut(kOnlyTheFinerSweepFindsIt);
   // The truth's rotation and its half turn, neither on the sweep's grid of 3°.
   const double truth = merge_case.T_b_a.theta_rad;
   GlobalSearchSettings settings;
@@ -105,11 +106,7 @@ TEST(MergeSeedGlobalFineTest, ExactRotationsTurnByThoseAnglesAlone) {
 
 TEST(MergeSeedGlobalFineTest, CropsFoundByTheFinerSweepMergeWithinTwoCellsAndOneDegree) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
-  expectMergedWithinTwoCellsAndOneDegree(
-      {"carpin-robot2_cast.txt",
-       109,
-       {{268, 61}, 228, 3.041856795968136, {23, 16}, {9, 3}},
-       {{176, 115}, 170, -1.7351036680437453, {37, 32}, {20, 22}}});
+  expectMergedWithinTwoCellsAndOneDegree(kOnlyTheFinerSweepFindsIt);
   expectRightButRefusedForTheRotation({"carpin-robot3_cast.txt",
                                        181,
                                        {{354, -21}, 165, -2.1637519441764286, {37, 9}, {9, 12}},
