@@ -1,6 +1,7 @@
 #include "mrslam/fusion/merge/chain_merger.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -87,7 +88,41 @@ void refuseForAlternative(const Eigen::Vector2d& pivot, const MergeResult& alter
   result.reason = reason.str();
 }
 
+// What every sweep of the chain shares: its coarse cells and no free agreement; `rotations` its
+// only rotations.
+GlobalSearchSettings chainSweepSettings(const ChainSettings& settings,
+                                        std::vector<double> rotations) {
+  GlobalSearchSettings sweep;
+  sweep.rotation_step_rad = settings.sweep_step_deg * M_PI / 180.0;
+  sweep.only_rotations_rad = std::move(rotations);
+  sweep.free_agreement_hypotheses = 0;
+  sweep.coarse_cells = settings.sweep_coarse_cells;
+  return sweep;
+}
+
 }  // namespace
+
+class ChainMerger::PairSweep {
+ public:
+  PairSweep(const GridMap& from, const GridMap& to, const ChainSettings& settings,
+            const SimilaritySettings& classes)
+      : from_(from), to_(to), settings_(settings), classes_(classes) {}
+
+  /// globalSearch() with `sweep` (chainSweepSettings()), the maps prepared once.
+  std::vector<GlobalHypothesis> search(const GlobalSearchSettings& sweep) {
+    if (!prepared_) {
+      prepared_.emplace(from_, to_, chainSweepSettings(settings_, {0.0}), classes_);
+    }
+    return prepared_->search(sweep);
+  }
+
+ private:
+  const GridMap& from_;
+  const GridMap& to_;
+  const ChainSettings& settings_;
+  const SimilaritySettings& classes_;
+  std::optional<GlobalSweep> prepared_;
+};
 
 ChainMerger::ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps, ChainSettings settings,
                          const SeedMergerSettings& judge)
@@ -105,6 +140,7 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
   std::vector<GridTransform> searched;   // every step's search hypotheses so far
   std::vector<GridTransform> undecided;  // placements an earlier step refused for a cleaner one
   SecondOpinion second;                  // the second-opinion step's result, when it ran already
+  PairSweep sweep(from, to, settings_, judge_.settings().similarity);
   for (const auto& step : steps_) {
     MergeResult result = step.get() == second.step ? second.result : step->merge(from, to);
     if (step->name() == settings_.second_opinion_step) {
@@ -119,7 +155,7 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
       judgeAgainstEarlier(from, to, earlier, result);
     }
     if (result.accepted && settings_.sweep_rivals) {
-      judgeAgainstSweep(from, to, result);
+      judgeAgainstSweep(from, to, sweep, result);
     }
     if (result.accepted && !settings_.turned_rival_degrees.empty()) {
       judgeAgainstTurns(from, to, result);
@@ -127,7 +163,7 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
     if (result.accepted &&
         (settings_.cleaner_alternative_rate > 0.0 || settings_.slid_alternative_rate > 0.0 ||
          settings_.walls_alternative_rate > 0.0)) {
-      judgeAgainstAlternatives(from, to, searched, undecided, result);
+      judgeAgainstAlternatives(from, to, searched, sweep, undecided, result);
     }
     if (result.accepted) {
       askSecondOpinion(from, to, *step, second, result);
@@ -180,16 +216,13 @@ void ChainMerger::judgeAgainstUndecided(const GridMap& from,
   }
 }
 
-void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, MergeResult& result) {
-  GlobalSearchSettings sweep;
-  sweep.rotation_step_rad = settings_.sweep_step_deg * M_PI / 180.0;
-  sweep.only_rotations_rad = {result.T_to_from.theta_rad};
-  sweep.peaks_per_rotation = settings_.sweep_peaks;
-  sweep.kept_hypotheses = settings_.sweep_peaks;
-  sweep.free_agreement_hypotheses = 0;
-  sweep.coarse_cells = settings_.sweep_coarse_cells;
+void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, PairSweep& sweep,
+                                    MergeResult& result) {
+  GlobalSearchSettings at_accepted = chainSweepSettings(settings_, {result.T_to_from.theta_rad});
+  at_accepted.peaks_per_rotation = settings_.sweep_peaks;
+  at_accepted.kept_hypotheses = settings_.sweep_peaks;
   std::vector<GridTransform> peaks;
-  for (const GlobalHypothesis& peak : globalSearch(from, to, sweep, judge_.settings().similarity)) {
+  for (const GlobalHypothesis& peak : sweep.search(at_accepted)) {
     peaks.push_back(peak.T_to_from);
   }
   if (judge_.cleanerRivalAmong(from, to, result.T_to_from, peaks)) {
@@ -200,27 +233,25 @@ void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, Merg
   }
 }
 
-std::vector<GridTransform> ChainMerger::turnedSweepPeaks(const GridMap& from, const GridMap& to,
+std::vector<GridTransform> ChainMerger::turnedSweepPeaks(const GridMap& from, PairSweep& sweep,
                                                          const GridTransform& T_to_from) const {
   std::vector<GridTransform> peaks;
   if (settings_.alternative_sweep_degrees.empty()) {
     return peaks;
   }
-  GlobalSearchSettings sweep;
-  sweep.rotation_step_rad = settings_.sweep_step_deg * M_PI / 180.0;
-  sweep.exact_rotations = true;
+  std::vector<double> turned;
   for (const double degrees : settings_.alternative_sweep_degrees) {
-    sweep.only_rotations_rad.push_back(T_to_from.theta_rad + degrees * M_PI / 180.0);
+    turned.push_back(T_to_from.theta_rad + degrees * M_PI / 180.0);
   }
-  sweep.peaks_per_rotation = settings_.alternative_sweep_peaks;
-  sweep.kept_hypotheses = settings_.alternative_sweep_peaks;
-  sweep.free_agreement_hypotheses = 0;
-  sweep.coarse_cells = settings_.sweep_coarse_cells;
+  GlobalSearchSettings at_turns = chainSweepSettings(settings_, std::move(turned));
+  at_turns.exact_rotations = true;
+  at_turns.peaks_per_rotation = settings_.alternative_sweep_peaks;
+  at_turns.kept_hypotheses = settings_.alternative_sweep_peaks;
   // Peaks of one turn that land within alternative_cells of each other would be judged alike:
   // the better one stands.
   const Eigen::Vector2d pivot = knownCentroid(from);
-  const double alike_rad = 2.5 * sweep.rotation_step_rad;
-  for (const GlobalHypothesis& peak : globalSearch(from, to, sweep, judge_.settings().similarity)) {
+  const double alike_rad = 2.5 * at_turns.rotation_step_rad;
+  for (const GlobalHypothesis& peak : sweep.search(at_turns)) {
     const bool alike = std::any_of(peaks.begin(), peaks.end(), [&](const GridTransform& kept) {
       return turnBetween(kept, peak.T_to_from) <= alike_rad &&
              landsWithin(kept, peak.T_to_from, pivot, settings_.alternative_cells);
@@ -376,7 +407,7 @@ bool ChainMerger::refusedForAlternative(const GridMap& from, const GridMap& to,
 
 void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
                                            const std::vector<GridTransform>& searched,
-                                           std::vector<GridTransform>& undecided,
+                                           PairSweep& sweep, std::vector<GridTransform>& undecided,
                                            MergeResult& result) {
   Accepted accepted;
   accepted.pivot = knownCentroid(from);
@@ -402,7 +433,7 @@ void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& t
       return;
     }
   }
-  const std::vector<GridTransform> swept = turnedSweepPeaks(from, to, result.T_to_from);
+  const std::vector<GridTransform> swept = turnedSweepPeaks(from, sweep, result.T_to_from);
   if (swept.empty()) {
     return;
   }

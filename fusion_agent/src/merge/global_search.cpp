@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
 
 #include "mrslam/fusion/merge/padded_spectrum.hpp"
 #include "mrslam/fusion/merge/quarter_turns.hpp"
+#include "mrslam/fusion/merge/torus_peaks.hpp"
 
 namespace mrslam::fusion {
 
@@ -76,24 +79,16 @@ struct Peak {
   double score;
 };
 
-std::vector<Peak> strongestPeaks(cv::Mat scores, int count, int separation) {
+// The strongest peaks of a rotation's scores, their shifts wrapped to negative past half the
+// DFT size.
+std::vector<Peak> strongestPeaks(const cv::Mat& scores, int count, int separation) {
   std::vector<Peak> peaks;
-  for (int i = 0; i < count; ++i) {
-    double best = 0.0;
-    cv::Point at;
-    cv::minMaxLoc(scores, nullptr, &best, nullptr, &at);
-    if (best <= 0.0) {
-      break;
-    }
-    peaks.push_back({Eigen::Vector2d(at.x > scores.cols / 2 ? at.x - scores.cols : at.x,
-                                     at.y > scores.rows / 2 ? at.y - scores.rows : at.y),
-                     best});
-    for (int dy = -separation; dy <= separation; ++dy) {  // wrapping, like the correlation
-      for (int dx = -separation; dx <= separation; ++dx) {
-        scores.at<float>((at.y + dy + scores.rows) % scores.rows,
-                         (at.x + dx + scores.cols) % scores.cols) = 0.0f;
-      }
-    }
+  for (const TorusPeak& peak : strongestTorusPeaks(scores, count, separation)) {
+    const int x = peak.cell.x;
+    const int y = peak.cell.y;
+    peaks.push_back({Eigen::Vector2d(x > scores.cols / 2 ? x - scores.cols : x,
+                                     y > scores.rows / 2 ? y - scores.rows : y),
+                     peak.score});
   }
   return peaks;
 }
@@ -174,15 +169,15 @@ RotationScores rotationScores(const TargetSpectra& target, const cv::Mat& walls_
   return result;
 }
 
-// The coarse maps and the turning of `from`, as every rotation shares them.
+// The coarse maps, the turning of `from` and the spectra of `to`, as every rotation shares them.
 struct Sweep {
   CoarseMap from;
   CoarseMap to;
   Turn turn;
   cv::Size size;  // of the DFTs
-  int rotations = 0;
   bool by_free = false;
   bool quarter_turns = false;
+  std::vector<TargetSpectra> targets;  // `to` turned back by 0 (and with quarter_turns 1-3) turns
 };
 
 // Peaks of one rotation: those of s, then (step 5) those of s_f.
@@ -226,11 +221,12 @@ cv::Mat wallTarget(const Sweep& sweep, const GlobalSearchSettings& settings) {
 
 // Every swept rotation's peaks, by rotation index (empty where not swept), each rotation's
 // images of `from` turned and transformed.
-std::vector<RotationPeaks> sweepEachRotation(const Sweep& sweep,
+// Every swept rotation's peaks, by rotation index of `rotations` over the full turn (empty where
+// not swept), each rotation's images of `from` turned and transformed.
+std::vector<RotationPeaks> sweepEachRotation(const Sweep& sweep, int rotations,
                                              const GlobalSearchSettings& settings) {
   const int coarse = std::max(1, settings.coarse_cells);
-  const TargetSpectra target = targetSpectra(wallTarget(sweep, settings), sweep.to.occupied,
-                                             sweep.by_free ? sweep.to.free : cv::Mat(), sweep.size);
+  const TargetSpectra& target = sweep.targets.front();
   if (settings.exact_rotations) {
     std::vector<RotationPeaks> peaks;
     for (const double theta : settings.only_rotations_rad) {
@@ -240,9 +236,9 @@ std::vector<RotationPeaks> sweepEachRotation(const Sweep& sweep,
     }
     return peaks;
   }
-  std::vector<RotationPeaks> peaks(static_cast<std::size_t>(sweep.rotations));
-  for (int k = 0; k < sweep.rotations; ++k) {
-    const double theta = 2.0 * M_PI * k / sweep.rotations;
+  std::vector<RotationPeaks> peaks(static_cast<std::size_t>(rotations));
+  for (int k = 0; k < rotations; ++k) {
+    const double theta = 2.0 * M_PI * k / rotations;
     if (!sweeps(theta, settings)) {
       continue;
     }
@@ -256,28 +252,16 @@ std::vector<RotationPeaks> sweepEachRotation(const Sweep& sweep,
 // The same for every rotation of the full turn, their count a multiple of 4, on a square DFT:
 // the images of `from` are turned and transformed for the first quarter turn only, each of them
 // correlated with `to` turned back by 0-3 quarter turns (quarter_turns.hpp).
-std::vector<RotationPeaks> sweepByQuarterTurns(const Sweep& sweep,
+std::vector<RotationPeaks> sweepByQuarterTurns(const Sweep& sweep, int rotations,
                                                const GlobalSearchSettings& settings) {
   const int coarse = std::max(1, settings.coarse_cells);
-  const int side = sweep.size.width;
-  const cv::Mat weights = wallTarget(sweep, settings);
-  const cv::Mat free = sweep.by_free ? sweep.to.free : cv::Mat();
-  std::vector<TargetSpectra> targets;
-  for (int quarters = 0; quarters < 4; ++quarters) {
-    const auto turned = [&](const cv::Mat& image) {
-      return quarters == 0 || image.empty() ? image : turnedOnTorus(image, side, quarters);
-    };
-    targets.push_back(
-        targetSpectra(turned(weights), turned(sweep.to.occupied), turned(free), sweep.size));
-  }
-  std::vector<RotationPeaks> peaks(static_cast<std::size_t>(sweep.rotations));
-  const int quarter = sweep.rotations / 4;
+  std::vector<RotationPeaks> peaks(static_cast<std::size_t>(rotations));
+  const int quarter = rotations / 4;
   for (int k = 0; k < quarter; ++k) {
-    const auto [walls_spectrum, free_spectrum] =
-        turnedSpectra(sweep, 2.0 * M_PI * k / sweep.rotations);
+    const auto [walls_spectrum, free_spectrum] = turnedSpectra(sweep, 2.0 * M_PI * k / rotations);
     for (int quarters = 0; quarters < 4; ++quarters) {
       const int index = k + quarters * quarter;
-      RotationScores scores = rotationScores(targets[static_cast<std::size_t>(quarters)],
+      RotationScores scores = rotationScores(sweep.targets[static_cast<std::size_t>(quarters)],
                                              walls_spectrum, free_spectrum, settings);
       if (quarters > 0) {
         scores.scores = quarterTurnScores(scores.scores, sweep.turn.canvas, quarters);
@@ -286,26 +270,62 @@ std::vector<RotationPeaks> sweepByQuarterTurns(const Sweep& sweep,
         }
       }
       peaks[static_cast<std::size_t>(index)] =
-          peaksOf(sweep, 2.0 * M_PI * index / sweep.rotations, coarse, std::move(scores), settings);
+          peaksOf(sweep, 2.0 * M_PI * index / rotations, coarse, std::move(scores), settings);
     }
   }
   return peaks;
 }
 
+// The spectra of `to`'s images as the correlations take them, turned back by 0 quarter turns,
+// and with quarter_turns by 1-3 as well (quarter_turns.hpp).
+std::vector<TargetSpectra> targetsOf(const Sweep& sweep, const GlobalSearchSettings& settings) {
+  const cv::Mat weights = wallTarget(sweep, settings);
+  const cv::Mat free = sweep.by_free ? sweep.to.free : cv::Mat();
+  std::vector<TargetSpectra> targets;
+  for (int quarters = 0; quarters < (sweep.quarter_turns ? 4 : 1); ++quarters) {
+    const auto turned = [&](const cv::Mat& image) {
+      return quarters == 0 || image.empty() ? image
+                                            : turnedOnTorus(image, sweep.size.width, quarters);
+    };
+    targets.push_back(
+        targetSpectra(turned(weights), turned(sweep.to.occupied), turned(free), sweep.size));
+  }
+  return targets;
+}
+
+int rotationCount(const GlobalSearchSettings& settings) {
+  return std::max(1, static_cast<int>(std::lround(2.0 * M_PI / settings.rotation_step_rad)));
+}
+
+bool byQuarterTurns(const GlobalSearchSettings& settings) {
+  return settings.quarter_turns && settings.only_rotations_rad.empty() &&
+         rotationCount(settings) % 4 == 0;
+}
+
 }  // namespace
 
-std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& to,
-                                           const GlobalSearchSettings& settings,
-                                           const SimilaritySettings& classes) {
-  if (!from.isValid() || !to.isValid() || from.cells.empty() || to.cells.empty()) {
-    return {};  // nothing to coarsen
-  }
-  const int coarse = std::max(1, settings.coarse_cells);
+struct GlobalSweep::Prepared {
   Sweep sweep;
-  sweep.from = coarsen(from, coarse, classes);
-  sweep.to = coarsen(to, coarse, classes);
+  Eigen::Vector2d centre_from = Eigen::Vector2d::Zero();  // of `from`, fine cells
+};
+
+GlobalSweep::PreparedFor GlobalSweep::preparedFor(const GlobalSearchSettings& settings) {
+  return {std::max(1, settings.coarse_cells), settings.free_weight,
+          settings.free_agreement_hypotheses > 0, byQuarterTurns(settings)};
+}
+
+GlobalSweep::GlobalSweep(const GridMap& from, const GridMap& to,
+                         const GlobalSearchSettings& settings, const SimilaritySettings& classes)
+    : prepared_for_(preparedFor(settings)) {
+  if (!from.isValid() || !to.isValid() || from.cells.empty() || to.cells.empty()) {
+    return;  // nothing to coarsen
+  }
+  auto prepared = std::make_unique<Prepared>();
+  Sweep& sweep = prepared->sweep;
+  sweep.from = coarsen(from, prepared_for_.coarse_cells, classes);
+  sweep.to = coarsen(to, prepared_for_.coarse_cells, classes);
   if (cv::countNonZero(sweep.from.occupied) == 0 || cv::countNonZero(sweep.to.occupied) == 0) {
-    return {};
+    return;
   }
   Turn& turn = sweep.turn;
   turn.canvas =
@@ -314,32 +334,59 @@ std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& t
   turn.centre_from =
       0.5 * Eigen::Vector2d(sweep.from.occupied.cols - 1, sweep.from.occupied.rows - 1);
   turn.centre_canvas = Eigen::Vector2d::Constant(0.5 * (turn.canvas - 1));
-  sweep.rotations =
-      std::max(1, static_cast<int>(std::lround(2.0 * M_PI / settings.rotation_step_rad)));
-  sweep.by_free = settings.free_agreement_hypotheses > 0;
-  sweep.quarter_turns =
-      settings.quarter_turns && settings.only_rotations_rad.empty() && sweep.rotations % 4 == 0;
+  sweep.by_free = prepared_for_.free_agreement;
+  sweep.quarter_turns = prepared_for_.quarter_turns;
   const int width = cv::getOptimalDFTSize(sweep.to.occupied.cols + turn.canvas);
   const int height = cv::getOptimalDFTSize(sweep.to.occupied.rows + turn.canvas);
   sweep.size = sweep.quarter_turns ? cv::Size(std::max(width, height), std::max(width, height))
                                    : cv::Size(width, height);
+  sweep.targets = targetsOf(sweep, settings);
+  prepared->centre_from = 0.5 * Eigen::Vector2d(from.geometry.width - 1, from.geometry.height - 1);
+  prepared_ = std::move(prepared);
+}
+
+GlobalSweep::~GlobalSweep() = default;
+GlobalSweep::GlobalSweep(GlobalSweep&&) noexcept = default;
+GlobalSweep& GlobalSweep::operator=(GlobalSweep&&) noexcept = default;
+
+std::vector<GlobalHypothesis> GlobalSweep::search(const GlobalSearchSettings& settings) const {
+  const PreparedFor wanted = preparedFor(settings);
+  if (wanted.coarse_cells != prepared_for_.coarse_cells ||
+      wanted.free_weight != prepared_for_.free_weight ||
+      wanted.free_agreement != prepared_for_.free_agreement ||
+      wanted.quarter_turns != prepared_for_.quarter_turns) {
+    throw std::invalid_argument(
+        "a prepared global sweep is searched with other coarse cells, free weight, free "
+        "agreement or quarter turns than it was prepared for");
+  }
+  if (!prepared_) {
+    return {};
+  }
+  const Sweep& sweep = prepared_->sweep;
+  const int rotations = rotationCount(settings);
   std::vector<GlobalHypothesis> all;
   std::vector<GlobalHypothesis> all_by_free;
-  for (const RotationPeaks& peaks : sweep.quarter_turns ? sweepByQuarterTurns(sweep, settings)
-                                                        : sweepEachRotation(sweep, settings)) {
+  for (const RotationPeaks& peaks : sweep.quarter_turns
+                                        ? sweepByQuarterTurns(sweep, rotations, settings)
+                                        : sweepEachRotation(sweep, rotations, settings)) {
     all.insert(all.end(), peaks.by_walls.begin(), peaks.by_walls.end());
     all_by_free.insert(all_by_free.end(), peaks.by_free.begin(), peaks.by_free.end());
   }
-  const Eigen::Vector2d centre_from =
-      0.5 * Eigen::Vector2d(from.geometry.width - 1, from.geometry.height - 1);
+  const double distinct_rad = 1.5 * settings.rotation_step_rad;
   std::vector<GlobalHypothesis> kept =
-      bestDistinct(std::move(all), settings.kept_hypotheses, centre_from, coarse,
-                   1.5 * settings.rotation_step_rad);
+      bestDistinct(std::move(all), settings.kept_hypotheses, prepared_->centre_from,
+                   prepared_for_.coarse_cells, distinct_rad);
   const std::vector<GlobalHypothesis> kept_by_free =
-      bestDistinct(std::move(all_by_free), settings.free_agreement_hypotheses, centre_from, coarse,
-                   1.5 * settings.rotation_step_rad);
+      bestDistinct(std::move(all_by_free), settings.free_agreement_hypotheses,
+                   prepared_->centre_from, prepared_for_.coarse_cells, distinct_rad);
   kept.insert(kept.end(), kept_by_free.begin(), kept_by_free.end());
   return kept;
+}
+
+std::vector<GlobalHypothesis> globalSearch(const GridMap& from, const GridMap& to,
+                                           const GlobalSearchSettings& settings,
+                                           const SimilaritySettings& classes) {
+  return GlobalSweep(from, to, settings, classes).search(settings);
 }
 
 }  // namespace mrslam::fusion

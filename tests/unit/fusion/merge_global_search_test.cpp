@@ -300,5 +300,84 @@ TEST(MergeGlobalSearchTest, TheSeedMergerNamesTheStepOfItsAnswer) {
       << result.method;
 }
 
+void expectTheSameHypotheses(const std::vector<GlobalHypothesis>& found,
+                             const std::vector<GlobalHypothesis>& reference) {
+  ASSERT_FALSE(reference.empty());
+  ASSERT_EQ(found.size(), reference.size());
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    EXPECT_EQ(found[i].T_to_from.theta_rad, reference[i].T_to_from.theta_rad) << i;
+    EXPECT_EQ(found[i].T_to_from.t_cells, reference[i].T_to_from.t_cells) << i;
+    EXPECT_EQ(found[i].score, reference[i].score) << i;
+    EXPECT_EQ(found[i].by_free_agreement, reference[i].by_free_agreement) << i;
+  }
+}
+
+// The merge chain sweeps one pair at the accepted rotation (the 1° grid about it) and at its
+// exact quarter turns from one preparation: each finds what a sweep of its own finds.
+TEST(MergeGlobalSearchTest, OnePreparedSweepFindsWhatSweepsOfTheirOwnFind) {
+  const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/carpin-intel.txt"));
+  ASSERT_TRUE(map.isValid());
+  std::mt19937 random(9);
+  merge_test::KnownCase known;
+  while (known.overlap == 0.0) {
+    known = merge_test::randomCase(map, 250, 0.5, 1.01, random);
+  }
+  const double theta = known.T_to_from.theta_rad;
+  GlobalSearchSettings at_rotation;
+  at_rotation.rotation_step_rad = kDegree;
+  at_rotation.only_rotations_rad = {theta};
+  at_rotation.free_agreement_hypotheses = 0;
+  at_rotation.peaks_per_rotation = 24;
+  at_rotation.kept_hypotheses = 24;
+  GlobalSearchSettings at_turns = at_rotation;
+  at_turns.exact_rotations = true;
+  at_turns.only_rotations_rad = {theta + M_PI / 2.0, theta + M_PI, theta + 1.5 * M_PI};
+  at_turns.peaks_per_rotation = 100;
+  at_turns.kept_hypotheses = 100;
+  const GlobalSweep sweep(known.from, known.to, at_rotation, SimilaritySettings{});
+  const std::vector<GlobalHypothesis> near = sweep.search(at_rotation);
+  expectTheSameHypotheses(near, globalSearch(known.from, known.to, at_rotation, {}));
+  expectTheSameHypotheses(sweep.search(at_turns), globalSearch(known.from, known.to, at_turns, {}));
+  EXPECT_TRUE(truthAmong(near, known, at_rotation)) << "the truth is among the peaks at its turn";
+  // The whole turn by quarter turns (the seed step's sweep), prepared for it.
+  const GlobalSearchSettings whole;
+  expectTheSameHypotheses(GlobalSweep(known.from, known.to, whole, {}).search(whole),
+                          globalSearch(known.from, known.to, whole, {}));
+}
+
+TEST(MergeGlobalSearchTest, APreparedSweepRefusesSettingsItWasNotPreparedFor) {
+  const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/carpin-intel.txt"));
+  ASSERT_TRUE(map.isValid());
+  std::mt19937 random(9);
+  merge_test::KnownCase known;
+  while (known.overlap == 0.0) {
+    known = merge_test::randomCase(map, 250, 0.5, 1.01, random);
+  }
+  GlobalSearchSettings prepared_for;
+  prepared_for.only_rotations_rad = {0.3};
+  prepared_for.free_agreement_hypotheses = 0;
+  const GlobalSweep sweep(known.from, known.to, prepared_for, SimilaritySettings{});
+  EXPECT_NO_THROW(sweep.search(prepared_for));
+  GlobalSearchSettings coarser = prepared_for;
+  coarser.coarse_cells = 8;
+  EXPECT_THROW(sweep.search(coarser), std::invalid_argument);
+  GlobalSearchSettings by_free = prepared_for;
+  by_free.free_agreement_hypotheses = 6;
+  EXPECT_THROW(sweep.search(by_free), std::invalid_argument);
+  GlobalSearchSettings heavier = prepared_for;
+  heavier.free_weight = 0.7;
+  EXPECT_THROW(sweep.search(heavier), std::invalid_argument);
+  GlobalSearchSettings whole_turn = prepared_for;
+  whole_turn.only_rotations_rad.clear();  // by quarter turns, on a square DFT
+  EXPECT_THROW(sweep.search(whole_turn), std::invalid_argument);
+  GridGeometry geometry;
+  geometry.width = 60;
+  geometry.height = 60;
+  EXPECT_TRUE(GlobalSweep(GridMap(geometry, GridMap::kFree), known.to, prepared_for, {})
+                  .search(prepared_for)
+                  .empty())
+      << "no walls: no hypothesis";
+}
+
 }  // namespace
 }  // namespace mrslam::fusion

@@ -132,9 +132,14 @@ class ChainMerger : public MapMerger {
   void judgeAgainstEarlier(const GridMap& from, const GridMap& to,
                            const std::vector<GridTransform>& earlier, MergeResult& result);
 
+  /// The chain's sweeps of one pair (at the accepted rotation, and turned) share one
+  /// preparation of the maps, built when a merge first sweeps.
+  class PairSweep;
+
   /// With sweep_rivals: refuses the accepted `result` when a peak of the sweep at its rotation
   /// is a cleaner rival.
-  void judgeAgainstSweep(const GridMap& from, const GridMap& to, MergeResult& result);
+  void judgeAgainstSweep(const GridMap& from, const GridMap& to, PairSweep& sweep,
+                         MergeResult& result);
 
   /// With turned_rival_degrees: refuses the accepted `result` when a turned copy of it explains
   /// more of the overlap about as cleanly.
@@ -183,7 +188,7 @@ class ChainMerger : public MapMerger {
   /// (alternative_prefilter_rate times the accepted transform's, measured alike). The refused
   /// transform and the alternative that refused it are added to `undecided`.
   void judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
-                                const std::vector<GridTransform>& searched,
+                                const std::vector<GridTransform>& searched, PairSweep& sweep,
                                 std::vector<GridTransform>& undecided, MergeResult& result);
 
   /// Refuses the accepted `result` when it lands within alternative_cells and undecided_deg of
@@ -194,7 +199,7 @@ class ChainMerger : public MapMerger {
 
   /// With alternative_sweep_degrees: the best peaks of the sweep at the accepted rotation turned
   /// by those angles.
-  std::vector<GridTransform> turnedSweepPeaks(const GridMap& from, const GridMap& to,
+  std::vector<GridTransform> turnedSweepPeaks(const GridMap& from, PairSweep& sweep,
                                               const GridTransform& T_to_from) const;
 
   std::vector<std::unique_ptr<MapMerger>> steps_;

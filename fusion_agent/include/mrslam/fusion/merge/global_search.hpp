@@ -28,6 +28,7 @@
 // The answer is coarse: within about one coarse cell and half a rotation step of a true peak.
 // The caller refines it (seed_global.cpp) and verifies it like any other hypothesis.
 
+#include <memory>
 #include <vector>
 
 #include "mrslam/common/grid_map.hpp"
@@ -62,6 +63,37 @@ struct GlobalHypothesis {
   GridTransform T_to_from;
   double score = 0.0;
   bool by_free_agreement = false;  ///< a peak of s_f (step 5), not of s
+};
+
+/// Steps 1-2 of one pair (both maps coarsened, `to`'s spectra) built once for several sweeps:
+/// a merge chain sweeps one pair at the accepted rotation and at its quarter turns.
+class GlobalSweep {
+ public:
+  /// The maps prepared for sweeps with the coarse cells, free weight, free agreement (on or
+  /// off) and quarter turns (used or not) of `settings`.
+  GlobalSweep(const GridMap& from, const GridMap& to, const GlobalSearchSettings& settings,
+              const SimilaritySettings& classes);
+  ~GlobalSweep();
+  GlobalSweep(GlobalSweep&&) noexcept;
+  GlobalSweep& operator=(GlobalSweep&&) noexcept;
+
+  /// globalSearch() with `settings`; throws std::invalid_argument when they differ from the
+  /// constructor's in what the preparation depends on (above).
+  std::vector<GlobalHypothesis> search(const GlobalSearchSettings& settings) const;
+
+ private:
+  /// What the preparation depends on.
+  struct PreparedFor {
+    int coarse_cells = 1;
+    double free_weight = 0.0;
+    bool free_agreement = false;
+    bool quarter_turns = false;
+  };
+  static PreparedFor preparedFor(const GlobalSearchSettings& settings);
+
+  struct Prepared;
+  PreparedFor prepared_for_;
+  std::unique_ptr<const Prepared> prepared_;  ///< null when either map has no occupied cell
 };
 
 /// Steps 1-5: the best coarse transforms of `from` onto `to` by s, best first, then those by s_f,

@@ -1,0 +1,60 @@
+#include "mrslam/fusion/merge/torus_peaks.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace mrslam::fusion {
+
+namespace {
+
+// A score and its index in row-major order.
+struct ScoredCell {
+  float score;
+  int index;
+};
+
+// Whether `a` is taken before `b`: the higher score, the first in row-major order on a tie.
+bool takenBefore(const ScoredCell& a, const ScoredCell& b) {
+  return a.score > b.score || (a.score == b.score && a.index < b.index);
+}
+
+// Whether two cells of a `cols` × `rows` torus lie within `separation` of each other in both
+// directions.
+bool withinOnTorus(int a, int b, int cols, int rows, int separation) {
+  const int dx = std::abs(a % cols - b % cols);
+  const int dy = std::abs(a / cols - b / cols);
+  return std::min(dx, cols - dx) <= separation && std::min(dy, rows - dy) <= separation;
+}
+
+}  // namespace
+
+std::vector<TorusPeak> strongestTorusPeaks(const cv::Mat& scores, int count, int separation) {
+  CV_Assert(scores.type() == CV_32F);
+  const cv::Mat image = scores.isContinuous() ? scores : scores.clone();
+  std::vector<ScoredCell> positive;
+  const auto* values = image.ptr<float>(0);
+  for (int i = 0; i < static_cast<int>(image.total()); ++i) {
+    if (values[i] > 0.0f) {
+      positive.push_back({values[i], i});
+    }
+  }
+  const auto later = [](const ScoredCell& a, const ScoredCell& b) { return takenBefore(b, a); };
+  std::make_heap(positive.begin(), positive.end(), later);
+  std::vector<int> kept;
+  std::vector<TorusPeak> peaks;
+  while (static_cast<int>(peaks.size()) < count && !positive.empty()) {
+    std::pop_heap(positive.begin(), positive.end(), later);
+    const ScoredCell next = positive.back();
+    positive.pop_back();
+    const bool cleared = std::any_of(kept.begin(), kept.end(), [&](int index) {
+      return withinOnTorus(index, next.index, image.cols, image.rows, separation);
+    });
+    if (!cleared) {
+      kept.push_back(next.index);
+      peaks.push_back({cv::Point(next.index % image.cols, next.index / image.cols), next.score});
+    }
+  }
+  return peaks;
+}
+
+}  // namespace mrslam::fusion
