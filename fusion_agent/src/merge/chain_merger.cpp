@@ -39,6 +39,10 @@ class SampledComparison {
   double disagreementRate(const GridTransform& T_to_from) const {
     return 1.0 - verificationIndex(compareAt(samples_, to_, T_to_from, tables_, false));
   }
+  /// Whether that rate exceeds `rate` (stopping early once it must).
+  bool disagreesMoreThan(const GridTransform& T_to_from, double rate) const {
+    return disagreementRateExceeds(samples_, to_, T_to_from, tables_, rate);
+  }
 
  private:
   ComparisonTables tables_;
@@ -441,7 +445,7 @@ void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& t
   const SampledComparison sampled(from, to, judge_.settings().similarity);
   const double sampled_rate = sampled.disagreementRate(result.T_to_from);
   for (const GridTransform& peak : swept) {
-    if (judgedAlready(peak) || sampled.disagreementRate(peak) > bar * sampled_rate) {
+    if (judgedAlready(peak) || sampled.disagreesMoreThan(peak, bar * sampled_rate)) {
       continue;
     }
     if (refusedForAlternative(from, to, peak, accepted, judged, undecided, result)) {

@@ -227,12 +227,15 @@ class ZeroedGrids {
       grids_.resize(index + 1);
     }
     Grid& grid = grids_[index];
-    for (int y = grid.written.y_begin; y < grid.written.y_end; ++y) {
-      const auto row = grid.values.begin() + static_cast<std::ptrdiff_t>(y) * grid.stride;
-      std::fill(row + grid.written.x_begin, row + grid.written.x_end, 0.0f);
-    }
-    if (grid.values.size() < size) {  // a grid never shrinks: the two ways' sizes alternate
-      grid.values.resize(size, 0.0f);
+    if (grid.values.size() < size) {
+      // A new grid, with room for a somewhat larger pair; a grid never shrinks (the two ways'
+      // sizes alternate).
+      grid.values = std::vector<float>(size + size / 4, 0.0f);
+    } else {
+      for (int y = grid.written.y_begin; y < grid.written.y_end; ++y) {
+        const auto row = grid.values.begin() + static_cast<std::ptrdiff_t>(y) * grid.stride;
+        std::fill(row + grid.written.x_begin, row + grid.written.x_end, 0.0f);
+      }
     }
     grid.stride = stride;
     grid.written = area;

@@ -238,6 +238,32 @@ Agreement compareAt(const std::vector<CellSample>& samples, const CodeImage& to,
   return unpacked(packed, entropy_change);
 }
 
+bool disagreementRateExceeds(const std::vector<CellSample>& samples, const CodeImage& to,
+                             const GridTransform& T_to_from, const ComparisonTables& tables,
+                             double rate) {
+  constexpr std::size_t kChunk = 2048;  // samples compared between two looks at the bound
+  CellPlacer placer(T_to_from, to, 0);
+  const std::uint8_t* classes = to.classes.ptr<std::uint8_t>(0);
+  std::uint64_t packed = 0;
+  for (std::size_t begin = 0; begin < samples.size(); begin += kChunk) {
+    const std::size_t end = std::min(samples.size(), begin + kChunk);
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::ptrdiff_t index = placer.index(samples[i]);
+      if (index >= 0) {
+        packed += tables.packedAgreement(3 * tables.classOf(samples[i].code) + classes[index]);
+      }
+    }
+    // The least the rate can end at: every sample left lands and agrees.
+    const Agreement so_far = unpacked(packed, 0.0);
+    const double most_overlap = static_cast<double>(so_far.agreement + so_far.disagreement) +
+                                static_cast<double>(samples.size() - end);
+    if (end < samples.size() && static_cast<double>(so_far.disagreement) > rate * most_overlap) {
+      return true;
+    }
+  }
+  return 1.0 - verificationIndex(unpacked(packed, 0.0)) > rate;
+}
+
 TranslationSearch searchTranslation(const std::vector<CellSample>& samples, const CodeImage& to,
                                     const GridTransform& T_to_from, int delta,
                                     const ComparisonTables& tables, bool with_entropy, int step) {

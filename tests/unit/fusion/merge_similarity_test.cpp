@@ -256,6 +256,63 @@ TEST(MergeSimilarityTest, CompareAtEqualsOneSampleAtATime) {
   }
 }
 
+// The early-stopping test of the disagreement rate answers as compareAt's counts do, on maps
+// large enough to stop early (rooms of walls and floor), at the truth (rate 0), near it and far
+// from it, for bars below, at and above each rate.
+TEST(MergeSimilarityTest, DisagreementRateExceedsAnswersAsTheFullCountDoes) {
+  std::mt19937 random(5);
+  GridMap from = mapOf(160, 140, GridMap::kFree);
+  std::uniform_int_distribution<int> corner(0, 150);
+  std::uniform_int_distribution<int> side(3, 40);
+  for (int room = 0; room < 40; ++room) {
+    const int x0 = corner(random);
+    const int y0 = corner(random);
+    const int w = side(random);
+    const int h = side(random);
+    for (int y = y0; y < std::min(140, y0 + h); ++y) {
+      for (int x = x0; x < std::min(160, x0 + w); ++x) {
+        const bool wall = x == x0 || y == y0 || x == x0 + w - 1 || y == y0 + h - 1;
+        from.at(x, y) = wall ? 100 : (room % 7 == 0 ? GridMap::kUnknown : GridMap::kFree);
+      }
+    }
+  }
+  const GridMap to = shiftedMap(from, 9, -6);
+  const ComparisonTables tables{SimilaritySettings{}};
+  const std::vector<CellSample> cells = knownCells(from, tables);
+  ASSERT_GT(cells.size(), 10000u);
+  const CodeImage codes = codeImage(to, 1, tables);
+  std::uniform_real_distribution<double> turn(-0.2, 0.2);
+  std::uniform_real_distribution<double> shift(-15.0, 15.0);
+  int exceeded = 0;
+  int kept = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    GridTransform T;
+    T.t_cells = Eigen::Vector2d(9.0, -6.0);
+    if (trial > 0) {
+      T.theta_rad = trial < 10 ? 0.01 * turn(random) : turn(random);
+      T.t_cells +=
+          trial < 10 ? Eigen::Vector2d(1.0, 0.0) : Eigen::Vector2d(shift(random), shift(random));
+    }
+    const double rate = 1.0 - verificationIndex(compareAt(cells, codes, T, tables, false));
+    if (trial == 0) {
+      EXPECT_EQ(rate, 0.0) << "the truth";
+    }
+    for (const double bar : {0.0, 0.5 * rate, rate, 1.5 * rate, 0.02, 0.1, 0.3, 0.6, 1.0}) {
+      const bool expected = rate > bar;
+      EXPECT_EQ(disagreementRateExceeds(cells, codes, T, tables, bar), expected)
+          << "trial " << trial << ": rate " << rate << ", bar " << bar;
+      (expected ? exceeded : kept) += 1;
+    }
+  }
+  EXPECT_GT(exceeded, 50);
+  EXPECT_GT(kept, 50);
+  const GridMap elsewhere = mapOf(40, 40, GridMap::kFree);
+  EXPECT_TRUE(disagreementRateExceeds(cells, codeImage(elsewhere, 1, tables),
+                                      GridTransform{0.0, Eigen::Vector2d(500.0, 500.0)}, tables,
+                                      0.99))
+      << "no overlap: a rate of 1";
+}
+
 // The search's rounding is std::lround's (halves away from zero), bit for bit, without the call.
 TEST(MergeSimilarityTest, RoundToIntRoundsAsLround) {
   std::vector<double> values = {0.0,

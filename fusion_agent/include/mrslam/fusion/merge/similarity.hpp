@@ -163,6 +163,13 @@ Agreement compareAt(const std::vector<CellSample>& samples, const CodeImage& to,
                     const GridTransform& T_to_from, const ComparisonTables& tables,
                     bool with_entropy = true);
 
+/// Whether 1 - V of the samples mapped by T_to_from exceeds `rate` (1 - V is 1 without overlap):
+/// the same answer as compareAt(), which it stops early once the samples left cannot bring the
+/// rate down to `rate` even if all of them agree.
+bool disagreementRateExceeds(const std::vector<CellSample>& samples, const CodeImage& to,
+                             const GridTransform& T_to_from, const ComparisonTables& tables,
+                             double rate);
+
 /// Structure agreement (our addition to block 9): of the occupied samples of `from` that land
 /// on known cells of `to`, those with an occupied cell of `to` within one cell (`near`) and the
 /// others (`far`). Free cells dominate agr and dis, so V stays high when a wrong transform
