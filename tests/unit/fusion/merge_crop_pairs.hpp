@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "mrslam/common/map_loaders.hpp"
 #include "mrslam/fusion/merge/map_merger.hpp"
@@ -121,6 +122,20 @@ inline void expectNoWrongAccept(const MergeCase& merge_case, MapMerger& merger) 
 /// The same for a pair's crops.
 inline void expectNoWrongAccept(const CropPair& pair, MapMerger& merger) {
   expectNoWrongAccept(cut(pair), merger);
+}
+
+/// `found` holds `reference`'s hypotheses in its order, each transform and score bit for bit:
+/// a search done another way (prepared once, on kept buffers) that must change nothing.
+template <typename Hypothesis>
+void expectTheSameHypotheses(const std::vector<Hypothesis>& found,
+                             const std::vector<Hypothesis>& reference) {
+  ASSERT_FALSE(reference.empty());
+  ASSERT_EQ(found.size(), reference.size());
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    EXPECT_EQ(found[i].T_to_from.theta_rad, reference[i].T_to_from.theta_rad) << i;
+    EXPECT_EQ(found[i].T_to_from.t_cells, reference[i].T_to_from.t_cells) << i;
+    EXPECT_EQ(found[i].score, reference[i].score) << i;
+  }
 }
 
 }  // namespace mrslam::fusion::merge_test

@@ -18,6 +18,7 @@ namespace {
 
 using merge_test::CropPair;
 using merge_test::cut;
+using merge_test::expectTheSameHypotheses;
 
 /// Cases of `mrslam merge-cases --cases 200 --seed 1` at 20-40 % overlap that the exhaustive
 /// merger accepts right: 63 and 138 the seed pipeline refuses, 45 it once did. (Case 15, here
@@ -153,17 +154,6 @@ std::vector<ExhaustiveHypothesis> searchedOnAFreshThread(const MergeCase& merge_
   std::vector<ExhaustiveHypothesis> found;
   std::thread([&] { found = exhaustiveSearch(merge_case.a, merge_case.b, {}, {}); }).join();
   return found;
-}
-
-void expectTheSameHypotheses(const std::vector<ExhaustiveHypothesis>& found,
-                             const std::vector<ExhaustiveHypothesis>& reference) {
-  ASSERT_FALSE(reference.empty());
-  ASSERT_EQ(found.size(), reference.size());
-  for (std::size_t i = 0; i < found.size(); ++i) {
-    EXPECT_EQ(found[i].T_to_from.theta_rad, reference[i].T_to_from.theta_rad) << i;
-    EXPECT_EQ(found[i].T_to_from.t_cells, reference[i].T_to_from.t_cells) << i;
-    EXPECT_EQ(found[i].score, reference[i].score) << i;
-  }
 }
 
 // A thread keeps its pyramids' grids between searches and clears only what the last search

@@ -35,6 +35,22 @@ bool truthAmong(const std::vector<GlobalHypothesis>& hypotheses, const merge_tes
   return false;
 }
 
+// A known-answer pair of crops of the Intel map, `side` cells, overlapping by at least
+// `least_overlap`, drawn by a generator seeded with `seed`.
+merge_test::KnownCase intelCase(unsigned seed, int side, double least_overlap) {
+  const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/carpin-intel.txt"));
+  if (!map.isValid()) {
+    ADD_FAILURE() << "carpin-intel.txt did not load";
+    return {};
+  }
+  std::mt19937 random(seed);
+  merge_test::KnownCase known;
+  while (known.overlap == 0.0) {
+    known = merge_test::randomCase(map, side, least_overlap, 1.01, random);
+  }
+  return known;
+}
+
 TEST(MergeGlobalSearchTest, APaddedSpectrumLeavesThePaddingRowsOutAndStaysTheSame) {
   // Random images of the sizes the sweep pads (odd sides, padded to DFT-friendly ones): the
   // spectrum with the padding rows left out of the first pass equals the full DFT bit for bit.
@@ -203,13 +219,7 @@ TEST(MergeGlobalSearchTest, QuarterTurnsOfToGiveTheHypothesesOfTurningFrom) {
 
 // Best first within each score: the walls' (s) first, then those with free agreement (s_f).
 TEST(MergeGlobalSearchTest, HypothesesComeBestFirst) {
-  const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/carpin-intel.txt"));
-  ASSERT_TRUE(map.isValid());
-  std::mt19937 random(5);
-  merge_test::KnownCase known;
-  while (known.overlap == 0.0) {
-    known = merge_test::randomCase(map, 250, 0.5, 1.01, random);
-  }
+  const merge_test::KnownCase known = intelCase(5, 250, 0.5);
   const std::vector<GlobalHypothesis> hypotheses =
       globalSearch(known.from, known.to, GlobalSearchSettings{}, SimilaritySettings{});
   ASSERT_FALSE(hypotheses.empty());
@@ -284,13 +294,7 @@ TEST(MergeGlobalSearchTest, AWholeBuildingOnLargerBlocksStillHoldsTheTruth) {
 }
 
 TEST(MergeGlobalSearchTest, TheSeedMergerNamesTheStepOfItsAnswer) {
-  const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/carpin-intel.txt"));
-  ASSERT_TRUE(map.isValid());
-  std::mt19937 random(11);
-  merge_test::KnownCase known;
-  while (known.overlap == 0.0) {
-    known = merge_test::randomCase(map, 300, 0.6, 1.01, random);
-  }
+  const merge_test::KnownCase known = intelCase(11, 300, 0.6);
   SeedMerger merger;
   const MergeResult result = merger.merge(known.from, known.to);
   ASSERT_TRUE(result.accepted) << result.reason;
@@ -300,14 +304,11 @@ TEST(MergeGlobalSearchTest, TheSeedMergerNamesTheStepOfItsAnswer) {
       << result.method;
 }
 
+// The same hypotheses, each also found by the same score (s or s_f).
 void expectTheSameHypotheses(const std::vector<GlobalHypothesis>& found,
                              const std::vector<GlobalHypothesis>& reference) {
-  ASSERT_FALSE(reference.empty());
-  ASSERT_EQ(found.size(), reference.size());
-  for (std::size_t i = 0; i < found.size(); ++i) {
-    EXPECT_EQ(found[i].T_to_from.theta_rad, reference[i].T_to_from.theta_rad) << i;
-    EXPECT_EQ(found[i].T_to_from.t_cells, reference[i].T_to_from.t_cells) << i;
-    EXPECT_EQ(found[i].score, reference[i].score) << i;
+  merge_test::expectTheSameHypotheses(found, reference);
+  for (std::size_t i = 0; i < std::min(found.size(), reference.size()); ++i) {
     EXPECT_EQ(found[i].by_free_agreement, reference[i].by_free_agreement) << i;
   }
 }
@@ -315,13 +316,7 @@ void expectTheSameHypotheses(const std::vector<GlobalHypothesis>& found,
 // The merge chain sweeps one pair at the accepted rotation (the 1° grid about it) and at its
 // exact quarter turns from one preparation: each finds what a sweep of its own finds.
 TEST(MergeGlobalSearchTest, OnePreparedSweepFindsWhatSweepsOfTheirOwnFind) {
-  const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/carpin-intel.txt"));
-  ASSERT_TRUE(map.isValid());
-  std::mt19937 random(9);
-  merge_test::KnownCase known;
-  while (known.overlap == 0.0) {
-    known = merge_test::randomCase(map, 250, 0.5, 1.01, random);
-  }
+  const merge_test::KnownCase known = intelCase(9, 250, 0.5);
   const double theta = known.T_to_from.theta_rad;
   GlobalSearchSettings at_rotation;
   at_rotation.rotation_step_rad = kDegree;
@@ -346,13 +341,7 @@ TEST(MergeGlobalSearchTest, OnePreparedSweepFindsWhatSweepsOfTheirOwnFind) {
 }
 
 TEST(MergeGlobalSearchTest, APreparedSweepRefusesSettingsItWasNotPreparedFor) {
-  const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/carpin-intel.txt"));
-  ASSERT_TRUE(map.isValid());
-  std::mt19937 random(9);
-  merge_test::KnownCase known;
-  while (known.overlap == 0.0) {
-    known = merge_test::randomCase(map, 250, 0.5, 1.01, random);
-  }
+  const merge_test::KnownCase known = intelCase(9, 250, 0.5);
   GlobalSearchSettings prepared_for;
   prepared_for.only_rotations_rad = {0.3};
   prepared_for.free_agreement_hypotheses = 0;
