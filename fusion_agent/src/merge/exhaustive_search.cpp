@@ -121,8 +121,8 @@ struct ValuePyramid {
   int row_pad = 0;  ///< rows of padding on each side
   int stride = 0;
   int rows = 0;
-  std::vector<const float*> walls;  ///< level h: max over 2^h × 2^h windows (low corner)
-  std::vector<const float*> free;   ///< the same for `from`'s free cells
+  std::vector<std::vector<float>> walls;  ///< level h: max over 2^h × 2^h windows (low corner)
+  std::vector<std::vector<float>> free;   ///< the same for `from`'s free cells
   /// Level h is 0 on every row outside [first_valued_row[h], last_valued_row] (both grids).
   std::vector<int> first_valued_row;
   int last_valued_row = 0;
@@ -140,10 +140,10 @@ cv::Mat distanceToWalls(const SearchGrid& grid) {
   return distance;
 }
 
-/// What a free cell of `from` scores on each cell of `to`, written into the grid's cells of
-/// `values` (padded by `pad` columns and `row_pad` rows, rows `stride` long).
-void writeFreeValues(const SearchGrid& grid, int pad, int row_pad, int stride,
-                     const ExhaustiveSearchSettings& settings, float* values) {
+/// What a free cell of `from` scores on each cell of `to`.
+std::vector<float> freeValueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
+                                 const ExhaustiveSearchSettings& settings) {
+  std::vector<float> values(static_cast<std::size_t>(stride) * rows, 0.0f);
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
       const GridClass cell = grid.at(x, y);
@@ -153,12 +153,14 @@ void writeFreeValues(const SearchGrid& grid, int pad, int row_pad, int stride,
               : (cell == GridClass::kWall ? -static_cast<float>(settings.conflict_penalty) : 0.0f);
     }
   }
+  return values;
 }
 
-/// What a wall of `from` scores on each cell of `to`, written as writeFreeValues() writes.
-void writeWallValues(const SearchGrid& grid, int pad, int row_pad, int stride,
-                     const ExhaustiveSearchSettings& settings, float* values) {
+/// What a wall of `from` scores on each cell of `to`.
+std::vector<float> valueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
+                             const ExhaustiveSearchSettings& settings) {
   const cv::Mat distance = distanceToWalls(grid);
+  std::vector<float> values(static_cast<std::size_t>(stride) * rows, 0.0f);
   const double two_sigma_sq = 2.0 * settings.wall_sigma * settings.wall_sigma;
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
@@ -173,6 +175,7 @@ void writeWallValues(const SearchGrid& grid, int pad, int row_pad, int stride,
           value;
     }
   }
+  return values;
 }
 
 /// The cells of a padded grid that may hold a value other than 0: [x_begin, x_end) ×
@@ -184,17 +187,13 @@ struct ValuedArea {
   int y_end = 0;
 };
 
-/// The area of the next coarser level: a window reaching into `finer` from below or left.
-ValuedArea pooledArea(ValuedArea finer, int step) {
-  finer.x_begin = std::max(0, finer.x_begin - step);
-  finer.y_begin = std::max(0, finer.y_begin - step);
-  return finer;
-}
-
 /// The max over each cell's 2 × 2 corners `step` apart of `finer` (whose values are 0 outside
-/// its area), written into `coarser` over `area` (pooledArea of the finer one's).
-void writeMaxPooled(const float* finer, int stride, int rows, int step, const ValuedArea& area,
-                    float* coarser) {
+/// `area`); `area` becomes the coarser grid's (a window reaching into it from below or left).
+std::vector<float> maxPooled(const std::vector<float>& finer, int stride, int rows, int step,
+                             ValuedArea& area) {
+  area.x_begin = std::max(0, area.x_begin - step);
+  area.y_begin = std::max(0, area.y_begin - step);
+  std::vector<float> coarser(finer.size(), 0.0f);
   for (int y = area.y_begin; y < area.y_end; ++y) {
     for (int x = area.x_begin; x < area.x_end; ++x) {
       float best = finer[static_cast<std::size_t>(y) * stride + x];
@@ -212,75 +211,28 @@ void writeMaxPooled(const float* finer, int stride, int rows, int step, const Va
       coarser[static_cast<std::size_t>(y) * stride + x] = best;
     }
   }
+  return coarser;
 }
 
-/// Float grids a thread keeps between searches, each 0 but where the last search that took it
-/// wrote: taking one clears those cells instead of allocating and zeroing a whole padded grid
-/// again (a search of two 400-cell maps takes 12 grids of about 270 000 cells, mostly padding,
-/// each way). A thread holds at most the largest pyramid it searched on.
-class ZeroedGrids {
- public:
-  /// Grid `index` of at least `size` cells, rows `stride` long, every cell 0; the caller writes
-  /// only within `area`, and the grid stays valid until this grid index is taken again.
-  float* take(std::size_t index, std::size_t size, int stride, const ValuedArea& area) {
-    if (grids_.size() <= index) {
-      grids_.resize(index + 1);
-    }
-    Grid& grid = grids_[index];
-    if (grid.values.size() < size) {
-      // A new grid, with room for a somewhat larger pair; a grid never shrinks (the two ways'
-      // sizes alternate).
-      grid.values = std::vector<float>(size + size / 4, 0.0f);
-    } else {
-      for (int y = grid.written.y_begin; y < grid.written.y_end; ++y) {
-        const auto row = grid.values.begin() + static_cast<std::ptrdiff_t>(y) * grid.stride;
-        std::fill(row + grid.written.x_begin, row + grid.written.x_end, 0.0f);
-      }
-    }
-    grid.stride = stride;
-    grid.written = area;
-    return grid.values.data();
-  }
-
- private:
-  struct Grid {
-    std::vector<float> values;
-    int stride = 0;
-    ValuedArea written;
-  };
-  std::vector<Grid> grids_;
-};
-
-/// The pyramid of `grid`, its levels held by `grids` (until they are taken again).
-ValuePyramid valuePyramid(const SearchGrid& grid, int pad, const ExhaustiveSearchSettings& settings,
-                          ZeroedGrids& grids) {
+ValuePyramid valuePyramid(const SearchGrid& grid, int pad,
+                          const ExhaustiveSearchSettings& settings) {
   ValuePyramid pyramid;
   pyramid.pad = pad;
   pyramid.row_pad = settings.stop_early ? std::min(pad, 2 << settings.depth) : pad;
   pyramid.stride = grid.width + 2 * pad;
   pyramid.rows = grid.height + 2 * pyramid.row_pad;
   const int row_pad = pyramid.row_pad;
-  const auto size = static_cast<std::size_t>(pyramid.stride) * pyramid.rows;
+  pyramid.walls.push_back(valueGrid(grid, pad, row_pad, pyramid.stride, pyramid.rows, settings));
+  pyramid.free.push_back(freeValueGrid(grid, pad, row_pad, pyramid.stride, pyramid.rows, settings));
   ValuedArea walls{pad, pad + grid.width, row_pad, row_pad + grid.height};
   ValuedArea free = walls;
-  float* walls_level = grids.take(0, size, pyramid.stride, walls);
-  float* free_level = grids.take(1, size, pyramid.stride, free);
-  writeWallValues(grid, pad, row_pad, pyramid.stride, settings, walls_level);
-  writeFreeValues(grid, pad, row_pad, pyramid.stride, settings, free_level);
-  pyramid.walls.push_back(walls_level);
-  pyramid.free.push_back(free_level);
   pyramid.first_valued_row.push_back(walls.y_begin);
   pyramid.last_valued_row = walls.y_end - 1;
   for (int h = 1; h <= settings.depth; ++h) {
-    const int step = 1 << (h - 1);
-    walls = pooledArea(walls, step);
-    free = pooledArea(free, step);
-    walls_level = grids.take(static_cast<std::size_t>(2 * h), size, pyramid.stride, walls);
-    free_level = grids.take(static_cast<std::size_t>(2 * h + 1), size, pyramid.stride, free);
-    writeMaxPooled(pyramid.walls.back(), pyramid.stride, pyramid.rows, step, walls, walls_level);
-    writeMaxPooled(pyramid.free.back(), pyramid.stride, pyramid.rows, step, free, free_level);
-    pyramid.walls.push_back(walls_level);
-    pyramid.free.push_back(free_level);
+    pyramid.walls.push_back(
+        maxPooled(pyramid.walls.back(), pyramid.stride, pyramid.rows, 1 << (h - 1), walls));
+    pyramid.free.push_back(
+        maxPooled(pyramid.free.back(), pyramid.stride, pyramid.rows, 1 << (h - 1), free));
     pyramid.first_valued_row.push_back(walls.y_begin);
   }
   return pyramid;
@@ -536,8 +488,9 @@ class BranchAndBound {
     const float free_cap = caps_.free * static_cast<float>(free.second - free.first);
     float sums[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     const bool open =
-        sumAtFour(pyramid_.walls[h], corner, half, up, walls, caps_.wall, free_cap, limit, sums) &&
-        sumAtFour(pyramid_.free[h], corner, half, up, free, caps_.free, 0.0f, limit, sums);
+        sumAtFour(pyramid_.walls[h].data(), corner, half, up, walls, caps_.wall, free_cap, limit,
+                  sums) &&
+        sumAtFour(pyramid_.free[h].data(), corner, half, up, free, caps_.free, 0.0f, limit, sums);
     for (int i = 0; i < 4; ++i) {
       bounds[i] = static_cast<double>(sums[i]);
     }
@@ -637,11 +590,8 @@ class FineScorer {
     fine.wall_sigma *= cell_size;
     fine.wall_reach *= cell_size;
     fine.free_margin = std::max(1, settings.free_margin * cell_size);
-    const auto cells = static_cast<std::size_t>(grid_to_.width) * grid_to_.height;
-    walls_.assign(cells, 0.0f);
-    free_.assign(cells, 0.0f);
-    writeWallValues(grid_to_, 0, 0, grid_to_.width, fine, walls_.data());
-    writeFreeValues(grid_to_, 0, 0, grid_to_.width, fine, free_.data());
+    walls_ = valueGrid(grid_to_, 0, 0, grid_to_.width, grid_to_.height, fine);
+    free_ = freeValueGrid(grid_to_, 0, 0, grid_to_.width, grid_to_.height, fine);
     points_ = pointSet(from, fine);
   }
 
@@ -711,8 +661,7 @@ std::vector<ExhaustiveHypothesis> searchOneWay(const SearchGrid& grid_from,
   }
   const int reach = static_cast<int>(std::ceil(set.radius)) + 1;
   const int top = 1 << settings.depth;
-  thread_local ZeroedGrids grids;  // one pyramid at a time: the two ways search in turn
-  const ValuePyramid pyramid = valuePyramid(grid_to, 2 * reach + top + 1, settings, grids);
+  const ValuePyramid pyramid = valuePyramid(grid_to, 2 * reach + top + 1, settings);
   const std::vector<Rotation> turned =
       rotations(set, pyramid.stride, settings.rotation_step_cells, turns,
                 settings.rotation_window_deg * M_PI / 180.0);

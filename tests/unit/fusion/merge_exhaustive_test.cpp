@@ -6,8 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <thread>
-
 #include "merge_crop_pairs.hpp"
 #include "mrslam/fusion/merge/chain_merger.hpp"
 #include "mrslam/fusion/merge/merger_registry.hpp"
@@ -18,7 +16,6 @@ namespace {
 
 using merge_test::CropPair;
 using merge_test::cut;
-using merge_test::expectTheSameHypotheses;
 
 /// Cases of `mrslam merge-cases --cases 200 --seed 1` at 20-40 % overlap that the exhaustive
 /// merger accepts right: 63 and 138 the seed pipeline refuses, 45 it once did. (Case 15, here
@@ -147,39 +144,6 @@ TEST(ExhaustiveSearchTest, BranchAndBoundKeepsWhatScoringEveryTranslationKeeps) 
     SCOPED_TRACE("known cells on the edge rows");
     expectTheSameAsEveryLeafScored(cut(to_the_edges), many);
   }
-}
-
-/// The search of `merge_case` on a thread of its own (whose kept grids are new).
-std::vector<ExhaustiveHypothesis> searchedOnAFreshThread(const MergeCase& merge_case) {
-  std::vector<ExhaustiveHypothesis> found;
-  std::thread([&] { found = exhaustiveSearch(merge_case.a, merge_case.b, {}, {}); }).join();
-  return found;
-}
-
-// A thread keeps its pyramids' grids between searches and clears only what the last search
-// wrote: searches of maps of other sizes in turn on one thread find what each finds alone.
-TEST(ExhaustiveSearchTest, SearchesInTurnOnOneThreadFindWhatEachFindsAlone) {
-  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
-  const MergeCase large = cut(kLowOverlapPairs[2]);
-  const MergeCase small = cut(kLowOverlapPairs[1]);
-  const MergeCase wide = cut(kWideOverlapPair);
-  const std::vector<ExhaustiveHypothesis> large_alone = searchedOnAFreshThread(large);
-  const std::vector<ExhaustiveHypothesis> small_alone = searchedOnAFreshThread(small);
-  const std::vector<ExhaustiveHypothesis> wide_alone = searchedOnAFreshThread(wide);
-  std::vector<ExhaustiveHypothesis> large_first;
-  std::vector<ExhaustiveHypothesis> small_after;
-  std::vector<ExhaustiveHypothesis> wide_after;
-  std::vector<ExhaustiveHypothesis> large_again;
-  std::thread([&] {
-    large_first = exhaustiveSearch(large.a, large.b, {}, {});
-    small_after = exhaustiveSearch(small.a, small.b, {}, {});
-    wide_after = exhaustiveSearch(wide.a, wide.b, {}, {});
-    large_again = exhaustiveSearch(large.a, large.b, {}, {});
-  }).join();
-  expectTheSameHypotheses(large_first, large_alone);
-  expectTheSameHypotheses(small_after, small_alone);
-  expectTheSameHypotheses(wide_after, wide_alone);
-  expectTheSameHypotheses(large_again, large_alone);
 }
 
 TEST(ExhaustiveSearchTest, TheTruthOfLowOverlapCropsIsAmongTheHypotheses) {
