@@ -26,10 +26,38 @@ bool withinOnTorus(int a, int b, int cols, int rows, int separation) {
   return std::min(dx, cols - dx) <= separation && std::min(dy, rows - dy) <= separation;
 }
 
+// Up to this many peaks, clearing each maximum in turn (a vectorised pass over the image a peak)
+// is quicker than collecting every positive score into a heap.
+constexpr int kClearedInTurnUpTo = 8;
+
+std::vector<TorusPeak> clearedInTurn(cv::Mat image, int count, int separation) {
+  std::vector<TorusPeak> peaks;
+  while (static_cast<int>(peaks.size()) < count) {
+    double best = 0.0;
+    cv::Point at;
+    cv::minMaxLoc(image, nullptr, &best, nullptr, &at);
+    if (best <= 0.0) {
+      break;
+    }
+    peaks.push_back({at, static_cast<float>(best)});
+    for (int dy = -separation; dy <= separation; ++dy) {
+      for (int dx = -separation; dx <= separation; ++dx) {
+        image.at<float>((at.y + dy + image.rows) % image.rows,
+                        (at.x + dx + image.cols) % image.cols) = 0.0f;
+      }
+    }
+  }
+  return peaks;
+}
+
 }  // namespace
 
 std::vector<TorusPeak> strongestTorusPeaks(const cv::Mat& scores, int count, int separation) {
   CV_Assert(scores.type() == CV_32F);
+  separation = std::clamp(separation, 0, std::max(scores.rows, scores.cols));  // the same peaks
+  if (count <= kClearedInTurnUpTo) {
+    return clearedInTurn(scores.clone(), count, separation);
+  }
   const cv::Mat image = scores.isContinuous() ? scores : scores.clone();
   std::vector<ScoredCell> positive;
   const auto* values = image.ptr<float>(0);

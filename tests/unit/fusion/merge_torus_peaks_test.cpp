@@ -54,7 +54,7 @@ TEST(TorusPeaksTest, TakeWhatClearingEachMaximumInTurnTakes) {
         }
       }
       for (const int separation : {0, 1, 2, 4}) {
-        for (const int count : {1, 5, 100, 5000}) {
+        for (const int count : {1, 5, 8, 9, 100, 5000}) {
           SCOPED_TRACE(testing::Message() << size << " levels " << levels << " separation "
                                           << separation << " count " << count);
           expectTheSamePeaks(strongestTorusPeaks(scores, count, separation),
