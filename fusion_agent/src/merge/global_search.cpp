@@ -219,8 +219,6 @@ cv::Mat wallTarget(const Sweep& sweep, const GlobalSearchSettings& settings) {
   return sweep.to.occupied - static_cast<float>(settings.free_weight) * sweep.to.free;
 }
 
-// Every swept rotation's peaks, by rotation index (empty where not swept), each rotation's
-// images of `from` turned and transformed.
 // Every swept rotation's peaks, by rotation index of `rotations` over the full turn (empty where
 // not swept), each rotation's images of `from` turned and transformed.
 std::vector<RotationPeaks> sweepEachRotation(const Sweep& sweep, int rotations,
@@ -293,10 +291,12 @@ std::vector<TargetSpectra> targetsOf(const Sweep& sweep, const GlobalSearchSetti
   return targets;
 }
 
+// The rotations of the sweep's full turn.
 int rotationCount(const GlobalSearchSettings& settings) {
   return std::max(1, static_cast<int>(std::lround(2.0 * M_PI / settings.rotation_step_rad)));
 }
 
+// Whether the sweep turns `from` for the first quarter turn only (GlobalSearchSettings).
 bool byQuarterTurns(const GlobalSearchSettings& settings) {
   return settings.quarter_turns && settings.only_rotations_rad.empty() &&
          rotationCount(settings) % 4 == 0;
