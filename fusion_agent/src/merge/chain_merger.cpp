@@ -229,6 +229,15 @@ void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, Pair
   for (const GlobalHypothesis& peak : sweep.search(at_accepted)) {
     peaks.push_back(peak.T_to_from);
   }
+  if (settings_.sweep_prefilter_rate > 0.0) {  // peaks that disagree far more are not placed
+    const SampledComparison sampled(from, to, judge_.settings().similarity);
+    const double bar = settings_.sweep_prefilter_rate * sampled.disagreementRate(result.T_to_from);
+    peaks.erase(std::remove_if(peaks.begin(), peaks.end(),
+                               [&](const GridTransform& peak) {
+                                 return sampled.disagreesMoreThan(peak, bar);
+                               }),
+                peaks.end());
+  }
   if (judge_.cleanerRivalAmong(from, to, result.T_to_from, peaks)) {
     result.accepted = false;
     result.reason =
@@ -505,6 +514,8 @@ ChainSettings loadChainSettings(const Config& chain) {
   s.sweep_peaks = static_cast<int>(chain.getInt("sweep_peaks", s.sweep_peaks, {1, 100}));
   s.sweep_coarse_cells =
       static_cast<int>(chain.getInt("sweep_coarse_cells", s.sweep_coarse_cells, {1, 16}));
+  s.sweep_prefilter_rate =
+      chain.getDouble("sweep_prefilter_rate", s.sweep_prefilter_rate, {0.0, 100.0});
   s.cleaner_alternative_rate =
       chain.getDouble("cleaner_alternative_rate", s.cleaner_alternative_rate, {0.0, 10.0});
   s.slid_alternative_rate =

@@ -231,6 +231,12 @@ TEST(MergeChainRivalsTest, TheSettingIsRead) {
   EXPECT_EQ(loaded.sweep_peaks, 8);
   EXPECT_EQ(loaded.sweep_coarse_cells, 2);
   EXPECT_THROW(loadChainSettings(Config::loadString("sweep_peaks: 0\n", "m.yaml")), ConfigError);
+  EXPECT_EQ(ChainSettings{}.sweep_prefilter_rate, 2.0);
+  EXPECT_EQ(loadChainSettings(Config::loadString("sweep_prefilter_rate: 0\n", "m.yaml"))
+                .sweep_prefilter_rate,
+            0.0);
+  EXPECT_THROW(loadChainSettings(Config::loadString("sweep_prefilter_rate: -1\n", "m.yaml")),
+               ConfigError);
   EXPECT_THROW(makeMergerFrom("chain", Config::loadString("chain: {slid_rivals: 3}\n", "m.yaml")),
                ConfigError);
 }
@@ -273,6 +279,20 @@ TEST(MergeChainSweepRivalsTest, ARepeatedRoomIsRefusedForTheCleanerTruthAtItsRot
   EXPECT_FALSE(result.accepted) << caseError(merge_case, result.T_to_from).distance_cells
                                 << " cells from the truth";
   EXPECT_NE(result.reason.find("more cleanly"), std::string::npos) << result.reason;
+}
+
+// The default prefilter keeps the cleaner truth among the peaks placed (the test above); a bar
+// below every peak's disagreement leaves none to place, and the repeated room is taken.
+TEST(MergeChainSweepRivalsTest, APrefilterBelowEveryPeakLeavesNoRivalToPlace) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
+  const MergeCase merge_case = cut(kRepeatingRooms);
+  const std::unique_ptr<MapMerger> chain =
+      makeMergerFrom("chain", Config::loadString("chain: {sweep_prefilter_rate: 0.01}\n"
+                                                 "exhaustive: {hypotheses: 16}\n",
+                                                 "m.yaml"));
+  const MergeResult result = chain->merge(merge_case.a, merge_case.b);
+  EXPECT_TRUE(result.accepted) << result.reason;
+  EXPECT_GT(caseError(merge_case, result.T_to_from).distance_cells, 80.0);
 }
 
 TEST(MergeChainSweepRivalsTest, ALargerSlideAlongCorridorsDoesNotRefuseTheTruth) {

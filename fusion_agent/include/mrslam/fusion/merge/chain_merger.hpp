@@ -53,6 +53,10 @@ struct ChainSettings {
   double sweep_step_deg = 1.0;  ///< rotation step of that sweep, degrees
   int sweep_peaks = 24;         ///< its best peaks, each placed by the ±δ search and weighed
   int sweep_coarse_cells = 4;   ///< cells per coarse cell of the sweep
+  /// Peaks of that sweep whose cells disagree more than this many times as often as the
+  /// accepted transform's (every other row and column of `from`'s known cells) are not placed:
+  /// a rival must end at cleaner_rival_rate (0.5) times it (0: every peak placed).
+  double sweep_prefilter_rate = 2.0;
   /// An accepted transform is refused when a hypothesis of a step's own search
   /// (MergeResult::hypotheses: the exhaustive search's, at any rotation) passes block 9's every
   /// test on its own, lands more than `alternative_cells` away, and its known cells disagree at
