@@ -229,7 +229,7 @@ void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, Pair
   for (const GlobalHypothesis& peak : sweep.search(at_accepted)) {
     peaks.push_back(peak.T_to_from);
   }
-  if (settings_.sweep_prefilter_rate > 0.0) {  // peaks that disagree far more are not placed
+  if (!peaks.empty() && settings_.sweep_prefilter_rate > 0.0) {  // far dirtier peaks: not placed
     const SampledComparison sampled(from, to, judge_.settings().similarity);
     const double bar = settings_.sweep_prefilter_rate * sampled.disagreementRate(result.T_to_from);
     peaks.erase(std::remove_if(peaks.begin(), peaks.end(),
