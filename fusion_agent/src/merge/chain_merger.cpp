@@ -106,26 +106,38 @@ GlobalSearchSettings chainSweepSettings(const ChainSettings& settings,
 
 }  // namespace
 
-class ChainMerger::PairSweep {
+class ChainMerger::PreparedPair {
  public:
-  PairSweep(const GridMap& from, const GridMap& to, const ChainSettings& settings,
-            const SimilaritySettings& classes)
-      : from_(from), to_(to), settings_(settings), classes_(classes) {}
+  PreparedPair(const GridMap& from, const GridMap& to, const ChainSettings& settings,
+               const SimilaritySettings& classes)
+      : from_(from),
+        to_(to),
+        sweep_settings_(chainSweepSettings(settings, {0.0})),
+        classes_(classes) {}
 
   /// globalSearch() with `sweep` (chainSweepSettings()), the maps prepared once.
   std::vector<GlobalHypothesis> search(const GlobalSearchSettings& sweep) {
-    if (!prepared_) {
-      prepared_.emplace(from_, to_, chainSweepSettings(settings_, {0.0}), classes_);
+    if (!sweep_) {
+      sweep_.emplace(from_, to_, sweep_settings_, classes_);
     }
-    return prepared_->search(sweep);
+    return sweep_->search(sweep);
+  }
+
+  /// The sample of `from`'s known cells against `to`, built once.
+  const SampledComparison& sampled() {
+    if (!sampled_) {
+      sampled_.emplace(from_, to_, classes_);
+    }
+    return *sampled_;
   }
 
  private:
   const GridMap& from_;
   const GridMap& to_;
-  const ChainSettings& settings_;
-  const SimilaritySettings& classes_;
-  std::optional<GlobalSweep> prepared_;
+  GlobalSearchSettings sweep_settings_;
+  SimilaritySettings classes_;
+  std::optional<GlobalSweep> sweep_;
+  std::optional<SampledComparison> sampled_;
 };
 
 ChainMerger::ChainMerger(std::vector<std::unique_ptr<MapMerger>> steps, ChainSettings settings,
@@ -144,7 +156,7 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
   std::vector<GridTransform> searched;   // every step's search hypotheses so far
   std::vector<GridTransform> undecided;  // placements an earlier step refused for a cleaner one
   SecondOpinion second;                  // the second-opinion step's result, when it ran already
-  PairSweep sweep(from, to, settings_, judge_.settings().similarity);
+  PreparedPair pair(from, to, settings_, judge_.settings().similarity);
   for (const auto& step : steps_) {
     MergeResult result = step.get() == second.step ? second.result : step->merge(from, to);
     if (step->name() == settings_.second_opinion_step) {
@@ -159,7 +171,7 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
       judgeAgainstEarlier(from, to, earlier, result);
     }
     if (result.accepted && settings_.sweep_rivals) {
-      judgeAgainstSweep(from, to, sweep, result);
+      judgeAgainstSweep(from, to, pair, result);
     }
     if (result.accepted && !settings_.turned_rival_degrees.empty()) {
       judgeAgainstTurns(from, to, result);
@@ -167,7 +179,7 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
     if (result.accepted &&
         (settings_.cleaner_alternative_rate > 0.0 || settings_.slid_alternative_rate > 0.0 ||
          settings_.walls_alternative_rate > 0.0)) {
-      judgeAgainstAlternatives(from, to, searched, sweep, undecided, result);
+      judgeAgainstAlternatives(from, to, searched, pair, undecided, result);
     }
     if (result.accepted) {
       askSecondOpinion(from, to, *step, second, result);
@@ -220,17 +232,17 @@ void ChainMerger::judgeAgainstUndecided(const GridMap& from,
   }
 }
 
-void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, PairSweep& sweep,
+void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, PreparedPair& pair,
                                     MergeResult& result) {
   GlobalSearchSettings at_accepted = chainSweepSettings(settings_, {result.T_to_from.theta_rad});
   at_accepted.peaks_per_rotation = settings_.sweep_peaks;
   at_accepted.kept_hypotheses = settings_.sweep_peaks;
   std::vector<GridTransform> peaks;
-  for (const GlobalHypothesis& peak : sweep.search(at_accepted)) {
+  for (const GlobalHypothesis& peak : pair.search(at_accepted)) {
     peaks.push_back(peak.T_to_from);
   }
   if (!peaks.empty() && settings_.sweep_prefilter_rate > 0.0) {  // far dirtier peaks: not placed
-    const SampledComparison sampled(from, to, judge_.settings().similarity);
+    const SampledComparison& sampled = pair.sampled();
     const double bar = settings_.sweep_prefilter_rate * sampled.disagreementRate(result.T_to_from);
     peaks.erase(std::remove_if(peaks.begin(), peaks.end(),
                                [&](const GridTransform& peak) {
@@ -246,7 +258,7 @@ void ChainMerger::judgeAgainstSweep(const GridMap& from, const GridMap& to, Pair
   }
 }
 
-std::vector<GridTransform> ChainMerger::turnedSweepPeaks(const GridMap& from, PairSweep& sweep,
+std::vector<GridTransform> ChainMerger::turnedSweepPeaks(const GridMap& from, PreparedPair& pair,
                                                          const GridTransform& T_to_from) const {
   std::vector<GridTransform> peaks;
   if (settings_.alternative_sweep_degrees.empty()) {
@@ -264,7 +276,7 @@ std::vector<GridTransform> ChainMerger::turnedSweepPeaks(const GridMap& from, Pa
   // the better one stands.
   const Eigen::Vector2d pivot = knownCentroid(from);
   const double alike_rad = 2.5 * at_turns.rotation_step_rad;
-  for (const GlobalHypothesis& peak : sweep.search(at_turns)) {
+  for (const GlobalHypothesis& peak : pair.search(at_turns)) {
     const bool alike = std::any_of(peaks.begin(), peaks.end(), [&](const GridTransform& kept) {
       return turnBetween(kept, peak.T_to_from) <= alike_rad &&
              landsWithin(kept, peak.T_to_from, pivot, settings_.alternative_cells);
@@ -420,7 +432,8 @@ bool ChainMerger::refusedForAlternative(const GridMap& from, const GridMap& to,
 
 void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
                                            const std::vector<GridTransform>& searched,
-                                           PairSweep& sweep, std::vector<GridTransform>& undecided,
+                                           PreparedPair& pair,
+                                           std::vector<GridTransform>& undecided,
                                            MergeResult& result) {
   Accepted accepted;
   accepted.pivot = knownCentroid(from);
@@ -446,12 +459,12 @@ void ChainMerger::judgeAgainstAlternatives(const GridMap& from, const GridMap& t
       return;
     }
   }
-  const std::vector<GridTransform> swept = turnedSweepPeaks(from, sweep, result.T_to_from);
+  const std::vector<GridTransform> swept = turnedSweepPeaks(from, pair, result.T_to_from);
   if (swept.empty()) {
     return;
   }
   // The sweep's many peaks are prefiltered on a sample of `from`'s cells, the accepted one too.
-  const SampledComparison sampled(from, to, judge_.settings().similarity);
+  const SampledComparison& sampled = pair.sampled();
   const double sampled_rate = sampled.disagreementRate(result.T_to_from);
   for (const GridTransform& peak : swept) {
     if (judgedAlready(peak) || sampled.disagreesMoreThan(peak, bar * sampled_rate)) {

@@ -79,9 +79,9 @@ struct Peak {
   double score;
 };
 
-// The strongest peaks of a rotation's scores, their shifts wrapped to negative past half the
-// DFT size.
-std::vector<Peak> strongestPeaks(const cv::Mat& scores, int count, int separation) {
+// The strongest peaks of a rotation's scores (spent: see strongestTorusPeaks), their shifts
+// wrapped to negative past half the DFT size.
+std::vector<Peak> strongestPeaks(cv::Mat& scores, int count, int separation) {
   std::vector<Peak> peaks;
   for (const TorusPeak& peak : strongestTorusPeaks(scores, count, separation)) {
     const int x = peak.cell.x;

@@ -30,7 +30,7 @@ bool withinOnTorus(int a, int b, int cols, int rows, int separation) {
 // is quicker than collecting every positive score into a heap.
 constexpr int kClearedInTurnUpTo = 8;
 
-std::vector<TorusPeak> clearedInTurn(cv::Mat image, int count, int separation) {
+std::vector<TorusPeak> clearedInTurn(cv::Mat& image, int count, int separation) {
   std::vector<TorusPeak> peaks;
   while (static_cast<int>(peaks.size()) < count) {
     double best = 0.0;
@@ -52,11 +52,11 @@ std::vector<TorusPeak> clearedInTurn(cv::Mat image, int count, int separation) {
 
 }  // namespace
 
-std::vector<TorusPeak> strongestTorusPeaks(const cv::Mat& scores, int count, int separation) {
+std::vector<TorusPeak> strongestTorusPeaks(cv::Mat& scores, int count, int separation) {
   CV_Assert(scores.type() == CV_32F);
   separation = std::clamp(separation, 0, std::max(scores.rows, scores.cols));  // the same peaks
   if (count <= kClearedInTurnUpTo) {
-    return clearedInTurn(scores.clone(), count, separation);
+    return clearedInTurn(scores, count, separation);
   }
   const cv::Mat image = scores.isContinuous() ? scores : scores.clone();
   std::vector<ScoredCell> positive;

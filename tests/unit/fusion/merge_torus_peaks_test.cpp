@@ -1,35 +1,45 @@
-// The strongest peaks of a correlation on a torus: the same peaks, in the same order, as taking
-// the maximum and clearing its wrapped neighbourhood in turn.
+// The strongest peaks of a correlation on a torus: the same peaks, in the same order, as the
+// definition (every positive score in order, each kept unless a kept one lies within the
+// separation), for few peaks and for many.
 
 #include "mrslam/fusion/merge/torus_peaks.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 namespace mrslam::fusion {
 namespace {
 
-// The definition: the maximum (cv::minMaxLoc), its square of `separation` cells cleared with
-// wrapping, until `count` are taken or no positive score is left.
-std::vector<TorusPeak> clearingInTurn(cv::Mat scores, int count, int separation) {
-  std::vector<TorusPeak> peaks;
-  while (static_cast<int>(peaks.size()) < count) {
-    double best = 0.0;
-    cv::Point at;
-    cv::minMaxLoc(scores, nullptr, &best, nullptr, &at);
-    if (best <= 0.0) {
-      break;
-    }
-    peaks.push_back({at, static_cast<float>(best)});
-    for (int dy = -separation; dy <= separation; ++dy) {
-      for (int dx = -separation; dx <= separation; ++dx) {
-        scores.at<float>((at.y + dy + scores.rows) % scores.rows,
-                         (at.x + dx + scores.cols) % scores.cols) = 0.0f;
+// The definition: every positive score, highest first and the first in row-major order on a tie,
+// kept when no kept peak lies within `separation` columns and rows (wrapping).
+std::vector<TorusPeak> byDefinition(const cv::Mat& scores, int count, int separation) {
+  std::vector<TorusPeak> positive;
+  for (int y = 0; y < scores.rows; ++y) {
+    for (int x = 0; x < scores.cols; ++x) {
+      if (scores.at<float>(y, x) > 0.0f) {
+        positive.push_back({cv::Point(x, y), scores.at<float>(y, x)});
       }
     }
   }
-  return peaks;
+  std::stable_sort(positive.begin(), positive.end(),
+                   [](const TorusPeak& a, const TorusPeak& b) { return a.score > b.score; });
+  const auto apart = [](int a, int b, int size) {
+    const int d = std::abs(a - b) % size;
+    return std::min(d, size - d);
+  };
+  std::vector<TorusPeak> kept;
+  for (const TorusPeak& next : positive) {
+    const bool cleared = std::any_of(kept.begin(), kept.end(), [&](const TorusPeak& peak) {
+      return apart(peak.cell.x, next.cell.x, scores.cols) <= separation &&
+             apart(peak.cell.y, next.cell.y, scores.rows) <= separation;
+    });
+    if (!cleared && static_cast<int>(kept.size()) < count) {
+      kept.push_back(next);
+    }
+  }
+  return kept;
 }
 
 void expectTheSamePeaks(const std::vector<TorusPeak>& found,
@@ -41,7 +51,7 @@ void expectTheSamePeaks(const std::vector<TorusPeak>& found,
   }
 }
 
-TEST(TorusPeaksTest, TakeWhatClearingEachMaximumInTurnTakes) {
+TEST(TorusPeaksTest, TakeThePeaksTheDefinitionTakes) {
   std::mt19937 random(11);
   for (const cv::Size size : {cv::Size(1, 1), cv::Size(7, 5), cv::Size(40, 33), cv::Size(96, 96)}) {
     for (const int levels : {0, 6}) {  // continuous scores, or few levels: many ties
@@ -57,8 +67,9 @@ TEST(TorusPeaksTest, TakeWhatClearingEachMaximumInTurnTakes) {
         for (const int count : {1, 5, 8, 9, 100, 5000}) {
           SCOPED_TRACE(testing::Message() << size << " levels " << levels << " separation "
                                           << separation << " count " << count);
-          expectTheSamePeaks(strongestTorusPeaks(scores, count, separation),
-                             clearingInTurn(scores.clone(), count, separation));
+          cv::Mat spent = scores.clone();
+          expectTheSamePeaks(strongestTorusPeaks(spent, count, separation),
+                             byDefinition(scores, count, separation));
         }
       }
     }
@@ -67,16 +78,20 @@ TEST(TorusPeaksTest, TakeWhatClearingEachMaximumInTurnTakes) {
 
 TEST(TorusPeaksTest, ANeighbourAcrossTheWrappedEdgeIsCleared) {
   cv::Mat scores(10, 12, CV_32F, cv::Scalar(0.0f));
-  scores.at<float>(0, 0) = 5.0f;   // the strongest
-  scores.at<float>(9, 11) = 4.0f;  // one cell from it across both edges
-  scores.at<float>(0, 9) = 3.0f;   // three columns from it across the left edge
-  scores.at<float>(5, 5) = -1.0f;  // never a peak
-  const std::vector<TorusPeak> peaks = strongestTorusPeaks(scores, 10, 2);
-  ASSERT_EQ(peaks.size(), 2u);
-  EXPECT_EQ(peaks[0].cell, cv::Point(0, 0));
-  EXPECT_EQ(peaks[1].cell, cv::Point(9, 0));
-  EXPECT_EQ(peaks[1].score, 3.0f);
-  EXPECT_EQ(strongestTorusPeaks(scores, 10, 0).size(), 3u) << "no clearing: every positive score";
+  scores.at<float>(0, 0) = 5.0f;     // the strongest
+  scores.at<float>(9, 11) = 4.0f;    // one cell from it across both edges
+  scores.at<float>(0, 9) = 3.0f;     // three columns from it across the left edge
+  scores.at<float>(5, 5) = -1.0f;    // never a peak
+  for (const int count : {3, 10}) {  // cleared in turn, and by the heap
+    cv::Mat spent = scores.clone();
+    const std::vector<TorusPeak> peaks = strongestTorusPeaks(spent, count, 2);
+    ASSERT_EQ(peaks.size(), 2u) << count;
+    EXPECT_EQ(peaks[0].cell, cv::Point(0, 0));
+    EXPECT_EQ(peaks[1].cell, cv::Point(9, 0));
+    EXPECT_EQ(peaks[1].score, 3.0f);
+    spent = scores.clone();
+    EXPECT_EQ(strongestTorusPeaks(spent, count, 0).size(), 3u) << "no clearing: every positive";
+  }
 }
 
 TEST(TorusPeaksTest, EqualScoresComeInRowMajorOrder) {
@@ -84,20 +99,26 @@ TEST(TorusPeaksTest, EqualScoresComeInRowMajorOrder) {
   scores.at<float>(4, 1) = 2.0f;
   scores.at<float>(1, 4) = 2.0f;
   scores.at<float>(1, 2) = 2.0f;
-  const std::vector<TorusPeak> peaks = strongestTorusPeaks(scores, 3, 0);
-  ASSERT_EQ(peaks.size(), 3u);
-  EXPECT_EQ(peaks[0].cell, cv::Point(2, 1));
-  EXPECT_EQ(peaks[1].cell, cv::Point(4, 1));
-  EXPECT_EQ(peaks[2].cell, cv::Point(1, 4));
+  for (const int count : {3, 9}) {  // cleared in turn, and by the heap
+    cv::Mat spent = scores.clone();
+    const std::vector<TorusPeak> peaks = strongestTorusPeaks(spent, count, 0);
+    ASSERT_EQ(peaks.size(), 3u) << count;
+    EXPECT_EQ(peaks[0].cell, cv::Point(2, 1));
+    EXPECT_EQ(peaks[1].cell, cv::Point(4, 1));
+    EXPECT_EQ(peaks[2].cell, cv::Point(1, 4));
+  }
 }
 
 TEST(TorusPeaksTest, AViewIntoALargerImageIsReadAsItsOwnCells) {
   cv::Mat whole(8, 8, CV_32F, cv::Scalar(0.0f));
-  whole.at<float>(2, 3) = 1.0f;  // inside the view at (1, 1)
-  whole.at<float>(0, 0) = 9.0f;  // outside it
-  const std::vector<TorusPeak> peaks = strongestTorusPeaks(whole(cv::Rect(2, 1, 4, 4)), 5, 1);
-  ASSERT_EQ(peaks.size(), 1u);
-  EXPECT_EQ(peaks[0].cell, cv::Point(1, 1));
+  whole.at<float>(2, 3) = 1.0f;      // inside the view at (1, 1)
+  whole.at<float>(0, 0) = 9.0f;      // outside it
+  for (const int count : {5, 50}) {  // cleared in turn, and by the heap
+    cv::Mat view = whole.clone()(cv::Rect(2, 1, 4, 4));
+    const std::vector<TorusPeak> peaks = strongestTorusPeaks(view, count, 1);
+    ASSERT_EQ(peaks.size(), 1u) << count;
+    EXPECT_EQ(peaks[0].cell, cv::Point(1, 1));
+  }
 }
 
 }  // namespace

@@ -136,13 +136,14 @@ class ChainMerger : public MapMerger {
   void judgeAgainstEarlier(const GridMap& from, const GridMap& to,
                            const std::vector<GridTransform>& earlier, MergeResult& result);
 
-  /// The chain's sweeps of one pair (at the accepted rotation, and turned) share one
-  /// preparation of the maps, built when a merge first sweeps.
-  class PairSweep;
+  /// What the chain's checks of one pair of maps share, each built when first needed: one
+  /// preparation of the maps for the sweeps (at the accepted rotation, and turned), and one sample
+  /// of `from`'s known cells for their prefilters.
+  class PreparedPair;
 
   /// With sweep_rivals: refuses the accepted `result` when a peak of the sweep at its rotation
   /// is a cleaner rival.
-  void judgeAgainstSweep(const GridMap& from, const GridMap& to, PairSweep& sweep,
+  void judgeAgainstSweep(const GridMap& from, const GridMap& to, PreparedPair& pair,
                          MergeResult& result);
 
   /// With turned_rival_degrees: refuses the accepted `result` when a turned copy of it explains
@@ -192,7 +193,7 @@ class ChainMerger : public MapMerger {
   /// (alternative_prefilter_rate times the accepted transform's, measured alike). The refused
   /// transform and the alternative that refused it are added to `undecided`.
   void judgeAgainstAlternatives(const GridMap& from, const GridMap& to,
-                                const std::vector<GridTransform>& searched, PairSweep& sweep,
+                                const std::vector<GridTransform>& searched, PreparedPair& pair,
                                 std::vector<GridTransform>& undecided, MergeResult& result);
 
   /// Refuses the accepted `result` when it lands within alternative_cells and undecided_deg of
@@ -203,7 +204,7 @@ class ChainMerger : public MapMerger {
 
   /// With alternative_sweep_degrees: the best peaks of the sweep at the accepted rotation turned
   /// by those angles.
-  std::vector<GridTransform> turnedSweepPeaks(const GridMap& from, PairSweep& sweep,
+  std::vector<GridTransform> turnedSweepPeaks(const GridMap& from, PreparedPair& pair,
                                               const GridTransform& T_to_from) const;
 
   std::vector<std::unique_ptr<MapMerger>> steps_;

@@ -18,6 +18,8 @@ struct TorusPeak {
 /// `separation` cells (wrapping, in columns or rows) from every higher one kept; on equal scores
 /// the first in row-major order comes first (as cv::minMaxLoc takes it). Fewer when the positive
 /// scores run out. A negative `separation` counts as 0 (each peak clears its own cell).
-std::vector<TorusPeak> strongestTorusPeaks(const cv::Mat& scores, int count, int separation);
+/// `scores` are spent: for up to 8 peaks they are cleared about each peak in place (pass a clone
+/// to keep them).
+std::vector<TorusPeak> strongestTorusPeaks(cv::Mat& scores, int count, int separation);
 
 }  // namespace mrslam::fusion
