@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -236,6 +237,86 @@ TEST(MergeCasesCommandTest, DetailsCarryTheCropsToCutACaseAgain) {
       EXPECT_NEAR(again.overlap, detail["overlap"].get<double>(), 1e-12);
     }
   }
+}
+
+/// The image affine of a case's details as a 2 × 3 matrix.
+cv::Matx23d affineOf(const nlohmann::json& rows) {
+  cv::Matx23d affine;
+  for (int r = 0; r < 2; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      affine(r, c) = rows.at(r).at(c).get<double>();
+    }
+  }
+  return affine;
+}
+
+/// Share of the walls (dark pixels) of picture `a` that `affine` carries onto known pixels of
+/// picture `b` landing within one pixel of a wall of `b`.
+double wallsCarriedOntoWalls(const cv::Mat& a, const cv::Mat& b, const cv::Matx23d& affine) {
+  int known = 0;
+  int near_wall = 0;
+  for (int row = 0; row < a.rows; ++row) {
+    for (int col = 0; col < a.cols; ++col) {
+      if (a.at<cv::Vec3b>(row, col)[0] >= 100) {
+        continue;
+      }
+      const cv::Vec2d in_b = affine * cv::Vec3d(col, row, 1.0);
+      const int x = static_cast<int>(std::lround(in_b[0]));
+      const int y = static_cast<int>(std::lround(in_b[1]));
+      if (x < 1 || y < 1 || x + 1 >= b.cols || y + 1 >= b.rows || b.at<cv::Vec3b>(y, x)[0] == 128) {
+        continue;
+      }
+      ++known;
+      bool wall = false;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          wall = wall || b.at<cv::Vec3b>(y + dy, x + dx)[0] < 100;
+        }
+      }
+      near_wall += wall;
+    }
+  }
+  return known > 0 ? static_cast<double>(near_wall) / known : 0.0;
+}
+
+// The details give the accepted transform and the truth as image affines of the saved crops: the
+// truth carries crop A's walls onto crop B's, and the two differ by the case's angle error.
+TEST(MergeCasesCommandTest, DetailsCarryTheAcceptedTransformAndTheTruthAsImageAffines) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
+  const auto folder = scratchFolder("affines");
+  const std::filesystem::path pictures = folder / "pictures";
+  const nlohmann::json json =
+      jsonOfRun({"--only", "1,6", "--json", "--details", "--save", pictures.string()}, "affines");
+  ASSERT_FALSE(json.is_null());
+  const nlohmann::json& cases = json["methods"]["feature"]["cases"];
+  ASSERT_EQ(cases.size(), 2u);
+  const nlohmann::json& positive = cases[0];
+  ASSERT_EQ(positive["case"].get<int>(), 1);
+  ASSERT_TRUE(positive["accepted"].get<bool>()) << positive.dump();  // feature takes case 1
+  const cv::Matx23d truth = affineOf(positive["truth_affine"]);
+  const cv::Matx23d accepted = affineOf(positive["affine"]);
+  for (const cv::Matx23d& affine : {truth, accepted}) {  // rigid: a rotation and a shift
+    EXPECT_NEAR(affine(0, 0) * affine(0, 0) + affine(1, 0) * affine(1, 0), 1.0, 1e-9);
+    EXPECT_NEAR(affine(0, 0), affine(1, 1), 1e-9);
+    EXPECT_NEAR(affine(0, 1), -affine(1, 0), 1e-9);
+  }
+  const double turn_deg = std::abs(std::remainder(std::atan2(accepted(1, 0), accepted(0, 0)) -
+                                                      std::atan2(truth(1, 0), truth(0, 0)),
+                                                  2.0 * M_PI)) *
+                          180.0 / M_PI;
+  EXPECT_NEAR(turn_deg, positive["angle_error_deg"].get<double>(), 1e-6);
+  const cv::Mat a = cv::imread((pictures / "case_1_a.png").string(), cv::IMREAD_COLOR);
+  const cv::Mat b = cv::imread((pictures / "case_1_b.png").string(), cv::IMREAD_COLOR);
+  ASSERT_FALSE(a.empty());
+  ASSERT_FALSE(b.empty());
+  EXPECT_GT(wallsCarriedOntoWalls(a, b, truth), 0.8);
+  cv::Matx23d shifted = truth;  // seven pixels off in both directions: the walls miss
+  shifted(0, 2) += 7.0;
+  shifted(1, 2) += 7.0;
+  EXPECT_LT(wallsCarriedOntoWalls(a, b, shifted), 0.5);
+  const nlohmann::json& negative = cases[1];
+  EXPECT_FALSE(negative.contains("truth_affine"));  // two buildings: no truth
+  EXPECT_EQ(negative.contains("affine"), negative["accepted"].get<bool>());
 }
 
 TEST(MergeCasesCommandTest, ABadCaseIdIsRefusedWithItsText) {

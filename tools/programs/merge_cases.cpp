@@ -12,7 +12,9 @@
 // case's exact truth by the seed acceptance alone (refused there: the acceptance or block 8 loses
 // the case, not the search) and counts per band the truths accepted within the tolerance (the
 // most this acceptance can reach), `--save DIR` writes each case's crops and crop B with crop A's
-// walls at the truth in red.
+// walls at the truth in red. With `--json --details` each case carries the transform accepted
+// (`affine`) and the truth (`truth_affine`) as image affines of crop A into crop B, the numbers
+// `mrslam merge B A --judge` takes.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -150,6 +152,14 @@ nlohmann::json cropJson(const std::string& source, const mrslam::fusion::CropSpe
           {"pad_high", {spec.pad_high.x(), spec.pad_high.y()}}};
 }
 
+// T_b_a as the image affine of crop A's pixels into crop B's (as `mrslam merge --json` prints it
+// and `mrslam merge B A --judge` takes it).
+nlohmann::json affineJson(const mrslam::fusion::GridTransform& T_b_a, const MergeCase& merge_case) {
+  const mrslam::fusion::ImageAffine affine = mrslam::fusion::gridTransformToImageAffine(
+      T_b_a, merge_case.a.geometry.height, merge_case.b.geometry.height);
+  return {{affine(0, 0), affine(0, 1), affine(0, 2)}, {affine(1, 0), affine(1, 1), affine(1, 2)}};
+}
+
 void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger, MethodTally& tally) {
   const auto start = std::chrono::steady_clock::now();
   const mrslam::fusion::MergeResult result = merger.merge(merge_case.a, merge_case.b);
@@ -166,6 +176,9 @@ void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger, M
       {"time_ms", tally.times_ms.back()},
       {"crop_a", cropJson(merge_case.source_a, merge_case.spec_a)},
       {"crop_b", cropJson(merge_case.source_b, merge_case.spec_b)}};
+  if (result.accepted) {
+    detail["affine"] = affineJson(result.T_to_from, merge_case);
+  }
   if (!merge_case.positive) {
     ++tally.negative_cases;
     tally.negative_accepts += result.accepted;
@@ -180,6 +193,7 @@ void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger, M
   band.false_accepts += result.accepted && !correct;
   band.refused += !result.accepted;
   detail["overlap"] = merge_case.overlap;
+  detail["truth_affine"] = affineJson(merge_case.T_b_a, merge_case);
   detail["angle_error_deg"] = error.angle_rad * 180.0 / 3.14159265358979323846;
   detail["distance_error_cells"] = error.distance_cells;
   tally.details.push_back(detail);
