@@ -54,6 +54,19 @@ bool isRed(const cv::Vec3b& bgr) {
   return bgr[0] == 0 && bgr[1] == 0 && bgr[2] == 255;
 }
 
+/// Whether a wall (dark pixel) of picture `b` lies within one pixel of (row, col), which is not on
+/// the picture's edge.
+bool withinAPixelOfAWall(const cv::Mat& b, int row, int col) {
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      if (b.at<cv::Vec3b>(row + dy, col + dx)[0] < 100) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 /// Share of the red pixels of `truth` over known cells of `b` that lie within one pixel of a
 /// wall (dark pixel) of `b`.
 double redOnWalls(const cv::Mat& truth, const cv::Mat& b) {
@@ -65,13 +78,7 @@ double redOnWalls(const cv::Mat& truth, const cv::Mat& b) {
         continue;
       }
       ++known;
-      bool wall = false;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          wall = wall || b.at<cv::Vec3b>(row + dy, col + dx)[0] < 100;
-        }
-      }
-      near_wall += wall;
+      near_wall += withinAPixelOfAWall(b, row, col);
     }
   }
   return known > 0 ? static_cast<double>(near_wall) / known : 0.0;
@@ -267,13 +274,7 @@ double wallsCarriedOntoWalls(const cv::Mat& a, const cv::Mat& b, const cv::Matx2
         continue;
       }
       ++known;
-      bool wall = false;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          wall = wall || b.at<cv::Vec3b>(y + dy, x + dx)[0] < 100;
-        }
-      }
-      near_wall += wall;
+      near_wall += withinAPixelOfAWall(b, y, x);
     }
   }
   return known > 0 ? static_cast<double>(near_wall) / known : 0.0;
