@@ -40,10 +40,11 @@ std::vector<TorusPeak> clearedInTurn(cv::Mat& image, int count, int separation) 
       break;
     }
     peaks.push_back({at, static_cast<float>(best)});
+    // A separation may exceed the rows or columns (up to the larger side): wrap any distance.
+    const auto wrapped = [](int index, int size) { return ((index % size) + size) % size; };
     for (int dy = -separation; dy <= separation; ++dy) {
       for (int dx = -separation; dx <= separation; ++dx) {
-        image.at<float>((at.y + dy + image.rows) % image.rows,
-                        (at.x + dx + image.cols) % image.cols) = 0.0f;
+        image.at<float>(wrapped(at.y + dy, image.rows), wrapped(at.x + dx, image.cols)) = 0.0f;
       }
     }
   }

@@ -53,7 +53,8 @@ void expectTheSamePeaks(const std::vector<TorusPeak>& found,
 
 TEST(TorusPeaksTest, TakeThePeaksTheDefinitionTakes) {
   std::mt19937 random(11);
-  for (const cv::Size size : {cv::Size(1, 1), cv::Size(7, 5), cv::Size(40, 33), cv::Size(96, 96)}) {
+  for (const cv::Size size :
+       {cv::Size(1, 1), cv::Size(7, 5), cv::Size(40, 3), cv::Size(40, 33), cv::Size(96, 96)}) {
     for (const int levels : {0, 6}) {  // continuous scores, or few levels: many ties
       cv::Mat scores(size, CV_32F);
       std::uniform_real_distribution<float> score(-1.0f, 2.0f);
@@ -118,6 +119,25 @@ TEST(TorusPeaksTest, AViewIntoALargerImageIsReadAsItsOwnCells) {
     const std::vector<TorusPeak> peaks = strongestTorusPeaks(view, count, 1);
     ASSERT_EQ(peaks.size(), 1u) << count;
     EXPECT_EQ(peaks[0].cell, cv::Point(1, 1));
+  }
+}
+
+// A separation wider than the view's rows wraps within the view: the cells around it, in the
+// larger image, are never written.
+TEST(TorusPeaksTest, ClearingAPeakStaysInsideTheScores) {
+  cv::Mat whole(10, 10, CV_32F, cv::Scalar(0.5f));
+  const cv::Rect inside(2, 4, 6, 2);
+  cv::Mat view = whole(inside);
+  view.at<float>(0, 3) = 2.0f;
+  const std::vector<TorusPeak> peaks = strongestTorusPeaks(view, 3, 3);
+  ASSERT_FALSE(peaks.empty());
+  EXPECT_EQ(peaks[0].cell, cv::Point(3, 0));
+  for (int y = 0; y < whole.rows; ++y) {
+    for (int x = 0; x < whole.cols; ++x) {
+      if (!inside.contains(cv::Point(x, y))) {
+        EXPECT_EQ(whole.at<float>(y, x), 0.5f) << "row " << y << " column " << x;
+      }
+    }
   }
 }
 
