@@ -22,6 +22,14 @@ double disagreementRate(const OverlapScore& overlap) {
   return overlap.overlap() == 0 ? 1.0 : 1.0 - overlap.verification();
 }
 
+// How many standard deviations fewer disagreements `there` holds than its overlap would at `rate`
+// (one-sided, binomial): z = (r n - dis) / sqrt(n r (1 - r)); 0 when that spread is 0.
+double deviationsCleaner(const OverlapScore& there, double rate) {
+  const double cells = static_cast<double>(there.overlap());
+  const double spread = std::sqrt(cells * rate * (1.0 - rate));
+  return spread > 0.0 ? (rate * cells - static_cast<double>(there.disagreement)) / spread : 0.0;
+}
+
 // Every other row and column of `from`'s known cells (a quarter of them) against `to`'s codes,
 // to estimate the disagreement rate (1 - V) of many placements cheaply.
 class SampledComparison {
@@ -79,14 +87,15 @@ std::string howItFaredAlone(const MergeResult& alternative) {
 }
 
 void refuseForAlternative(const Eigen::Vector2d& pivot, const MergeResult& alternative,
-                          double ratio, MergeResult& result) {
+                          double ratio, double deviations, MergeResult& result) {
   const GridTransform& T_alternative = alternative.T_to_from;
   std::ostringstream reason;
   reason.precision(3);
   reason << "another placement, " << cellsApartAt(T_alternative, result.T_to_from, pivot)
          << " cells and " << turnBetween(T_alternative, result.T_to_from) * 180.0 / M_PI
          << " degrees away, " << howItFaredAlone(alternative) << ", and its known cells disagree "
-         << ratio << " times as often (a building that looks alike turned)";
+         << ratio << " times as often, " << deviations
+         << " standard deviations below the accepted rate (a building that looks alike turned)";
   result.accepted = false;
   result.refusal = MergeRefusal::kRival;
   result.reason = reason.str();
@@ -391,14 +400,15 @@ void ChainMerger::askSecondOpinion(const GridMap& from, const GridMap& to,
 
 ChainMerger::AlternativeBar ChainMerger::alternativeBar(const MergeResult& alone) const {
   if (alone.accepted) {
-    return {settings_.cleaner_alternative_rate, 0.0};
+    return {settings_.cleaner_alternative_rate, 0.0, settings_.cleaner_alternative_min_z, 0.0};
   }
   switch (alone.refusal) {
     case MergeRefusal::kEntropy:
     case MergeRefusal::kTranslation:
-      return {settings_.slid_alternative_rate, 0.0};
+      return {settings_.slid_alternative_rate, 0.0, 0.0, 0.0};
     case MergeRefusal::kStructure:
-      return {settings_.walls_alternative_rate, settings_.walls_alternative_overlap};
+      return {settings_.walls_alternative_rate, settings_.walls_alternative_overlap, 0.0,
+              settings_.walls_alternative_min_turn_deg};
     default:
       return {};
   }
@@ -414,17 +424,20 @@ bool ChainMerger::refusedForAlternative(const GridMap& from, const GridMap& to,
   judged.push_back(alone.T_to_from);
   const AlternativeBar bar = alternativeBar(alone);
   if (bar.rate <= 0.0 ||
-      landsWithin(result.T_to_from, alone.T_to_from, accepted.pivot, settings_.alternative_cells)) {
+      landsWithin(result.T_to_from, alone.T_to_from, accepted.pivot, settings_.alternative_cells) ||
+      turnBetween(result.T_to_from, alone.T_to_from) * 180.0 / M_PI < bar.min_turn_deg) {
     return false;
   }
   const OverlapScore there = scoreOverlap(from, to, alone.T_to_from);
   const double ratio = disagreementRate(there) / accepted.rate;
   const bool overlaps_enough = static_cast<double>(there.overlap()) >=
                                bar.overlap * static_cast<double>(accepted.overlap.overlap());
-  if (ratio <= bar.rate && overlaps_enough) {
+  const double deviations = deviationsCleaner(there, accepted.rate);
+  const bool beyond_chance = bar.min_z <= 0.0 || deviations >= bar.min_z;
+  if (ratio <= bar.rate && overlaps_enough && beyond_chance) {
     undecided.push_back(result.T_to_from);
     undecided.push_back(alone.T_to_from);
-    refuseForAlternative(accepted.pivot, alone, ratio, result);
+    refuseForAlternative(accepted.pivot, alone, ratio, deviations, result);
     return true;
   }
   return false;

@@ -30,12 +30,16 @@ ChainSettings loadChainSettings(const Config& chain) {
       chain.getDouble("sweep_prefilter_rate", s.sweep_prefilter_rate, {0.0, 100.0});
   s.cleaner_alternative_rate =
       chain.getDouble("cleaner_alternative_rate", s.cleaner_alternative_rate, {0.0, 10.0});
+  s.cleaner_alternative_min_z =
+      chain.getDouble("cleaner_alternative_min_z", s.cleaner_alternative_min_z, {0.0, 100.0});
   s.slid_alternative_rate =
       chain.getDouble("slid_alternative_rate", s.slid_alternative_rate, {0.0, 10.0});
   s.walls_alternative_rate =
       chain.getDouble("walls_alternative_rate", s.walls_alternative_rate, {0.0, 10.0});
   s.walls_alternative_overlap =
       chain.getDouble("walls_alternative_overlap", s.walls_alternative_overlap, {0.0, 100.0});
+  s.walls_alternative_min_turn_deg = chain.getDouble(
+      "walls_alternative_min_turn_deg", s.walls_alternative_min_turn_deg, {0.0, 180.0});
   s.alternative_cells = chain.getDouble("alternative_cells", s.alternative_cells, {0.0, 1000.0});
   s.alternative_prefilter_rate =
       chain.getDouble("alternative_prefilter_rate", s.alternative_prefilter_rate, {0.0, 100.0});

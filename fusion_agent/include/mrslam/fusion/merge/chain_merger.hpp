@@ -11,12 +11,14 @@
 // explains the overlap more cleanly (a building whose rooms repeat along a corridor). With
 // `cleaner_alternative_rate`, the hypotheses of the steps' own searches at every rotation
 // (MergeResult::hypotheses) are judged alone, and one that passes elsewhere and fits more cleanly
-// refuses the merge (a hall that looks alike turned by a quarter or a half); with
+// beyond chance (`cleaner_alternative_min_z`) refuses the merge (a hall that looks alike turned by
+// a quarter or a half); with
 // `alternative_sweep_degrees`, so do the peaks of a sweep over every translation at the accepted
 // rotation turned by those angles (the right turn of such a hall where it overlaps too little to
 // be among the search's hypotheses). With `walls_alternative_rate`, so does one refused alone
 // only by the structure test that fits more cleanly over more known cells
-// (`walls_alternative_overlap`). A transform so refused and its alternative stay undecided: a
+// (`walls_alternative_overlap`), turned from the accepted transform
+// (`walls_alternative_min_turn_deg`). A transform so refused and its alternative stay undecided: a
 // later step's transform near either is refused too (`undecided_deg`). With
 // `turned_rival_degrees`, the overlap turned by a quarter or a half about its centre and placed
 // again refuses the merge when it explains clearly more of it about as cleanly (a room that fits
@@ -63,6 +65,11 @@ struct ChainSettings {
   /// most this many times as often (a hall that looks alike turned by a quarter or a half: the
   /// wrong turn overlaps more and wins the ranking, the right one fits more cleanly); 0: off.
   double cleaner_alternative_rate = 1.0;
+  /// ... and only when its disagreements are this many standard deviations fewer than its overlap
+  /// would hold at the accepted transform's rate (z = (r n - dis) / sqrt(n r (1 - r)), n its
+  /// overlap, r the accepted rate): a slightly cleaner fit over few cells is chance, not a
+  /// building that looks alike turned; 0: the rate alone decides.
+  double cleaner_alternative_min_z = 4.0;
   /// The same for an alternative refused on its own only because its exact shift is not fixed
   /// (MergeRefusal::kEntropy or kTranslation: the maps fit there, slid along a corridor); 0: off
   /// (at 0.5 it refuses a wrong quarter turn and a right merge of the same figures alike).
@@ -72,7 +79,11 @@ struct ChainSettings {
   /// as many known cells; 0: off.
   double walls_alternative_rate = 0.7;
   double walls_alternative_overlap = 1.2;  ///< ... the least overlap of it, times the accepted's
-  double alternative_cells = 10.0;         ///< alternatives land farther than this from it (cells)
+  /// ... and when it is turned at least this much from the accepted transform (degrees): one at
+  /// about the same rotation is the accepted fit slid along its walls, which the translation
+  /// tests weigh, not a building that looks alike turned.
+  double walls_alternative_min_turn_deg = 20.0;
+  double alternative_cells = 10.0;  ///< alternatives land farther than this from it (cells)
   /// Only hypotheses whose known cells, as found, disagree at most this many times as often as
   /// the accepted transform's are judged on their own (each judgement refines a hypothesis).
   double alternative_prefilter_rate = 2.0;
@@ -166,10 +177,14 @@ class ChainMerger : public MapMerger {
   struct AlternativeBar {
     double rate = 0.0;
     double overlap = 0.0;
+    double min_z = 0.0;  ///< how many standard deviations cleaner (cleaner_alternative_min_z)
+    double min_turn_deg = 0.0;  ///< the least turn from the accepted transform
   };
-  /// The bar of an alternative judged alone: cleaner_alternative_rate when it passes,
+  /// The bar of an alternative judged alone: cleaner_alternative_rate (with
+  /// cleaner_alternative_min_z) when it passes,
   /// slid_alternative_rate when only its shift is not fixed, walls_alternative_rate (with
-  /// walls_alternative_overlap) when only its walls are unmet, else no bar.
+  /// walls_alternative_overlap and walls_alternative_min_turn_deg) when only its walls are unmet,
+  /// else no bar.
   AlternativeBar alternativeBar(const MergeResult& alone) const;
 
   /// The accepted transform as its alternatives are weighed against it.
