@@ -127,6 +127,18 @@ MergeResult expectTurnedWithoutTheCheckAndRefusedWithIt(const MergeCase& merge_c
   return without;
 }
 
+// A right merge by the default chain that `chain_section` (a bar under test turned off) refuses
+// for another placement, with `reason_part` in its reason.
+void expectRightByDefaultAndRefusedWith(const MergeCase& merge_case,
+                                        const std::string& chain_section,
+                                        const std::string& reason_part) {
+  merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chainWith(""));
+  const MergeResult refused = chainWith(chain_section)->merge(merge_case.a, merge_case.b);
+  EXPECT_FALSE(refused.accepted);
+  EXPECT_NE(refused.reason.find("another placement"), std::string::npos) << refused.reason;
+  EXPECT_NE(refused.reason.find(reason_part), std::string::npos) << refused.reason;
+}
+
 TEST(MergeChainAlternativesTest, TheSettingsAreReadAndRangeChecked) {
   const ChainSettings defaults;
   EXPECT_DOUBLE_EQ(defaults.cleaner_alternative_rate, 1.0);
@@ -150,19 +162,13 @@ TEST(MergeChainAlternativesTest, TheSettingsAreReadAndRangeChecked) {
   EXPECT_DOUBLE_EQ(loaded.walls_alternative_overlap, 2.0);
   EXPECT_DOUBLE_EQ(loaded.cleaner_alternative_min_z, 2.5);
   EXPECT_DOUBLE_EQ(loaded.walls_alternative_min_turn_deg, 45.0);
-  EXPECT_THROW(
-      loadChainSettings(Config::loadString("walls_alternative_min_turn_deg: 181\n", "m.yaml")),
-      ConfigError);
-  EXPECT_THROW(loadChainSettings(Config::loadString("cleaner_alternative_min_z: -1\n", "m.yaml")),
-               ConfigError);
-  EXPECT_THROW(loadChainSettings(Config::loadString("cleaner_alternative_rate: -1\n", "m.yaml")),
-               ConfigError);
-  EXPECT_THROW(loadChainSettings(Config::loadString("alternative_cells: -1\n", "m.yaml")),
-               ConfigError);
-  EXPECT_THROW(loadChainSettings(Config::loadString("slid_alternative_rate: 11\n", "m.yaml")),
-               ConfigError);
-  EXPECT_THROW(loadChainSettings(Config::loadString("walls_alternative_overlap: -1\n", "m.yaml")),
-               ConfigError);
+  for (const char* out_of_range :
+       {"walls_alternative_min_turn_deg: 181\n", "cleaner_alternative_min_z: -1\n",
+        "cleaner_alternative_rate: -1\n", "alternative_cells: -1\n", "slid_alternative_rate: 11\n",
+        "walls_alternative_overlap: -1\n"}) {
+    EXPECT_THROW(loadChainSettings(Config::loadString(out_of_range, "m.yaml")), ConfigError)
+        << out_of_range;
+  }
 }
 
 TEST(MergeChainAlternativesTest, TheExhaustiveStepReturnsItsHypothesesWithTheTruthAmongThem) {
@@ -260,27 +266,17 @@ TEST(MergeChainAlternativesTest, ARightMergeOutweighsALesserAlternative) {
 
 TEST(MergeChainAlternativesTest, AnAlternativeCleanerByChanceDoesNotRefuse) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
-  const MergeCase merge_case = cut(kRightMergeWithAScarcelyCleanerAlternative);
-  merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chainWith(""));
   // On the rate alone the turned room refuses it, as it did before the bar in deviations.
-  const MergeResult on_the_rate =
-      chainWith("cleaner_alternative_min_z: 0")->merge(merge_case.a, merge_case.b);
-  EXPECT_FALSE(on_the_rate.accepted);
-  EXPECT_NE(on_the_rate.reason.find("another placement"), std::string::npos) << on_the_rate.reason;
-  EXPECT_NE(on_the_rate.reason.find("0.894 times as often, 0.5"), std::string::npos)
-      << on_the_rate.reason;
+  expectRightByDefaultAndRefusedWith(cut(kRightMergeWithAScarcelyCleanerAlternative),
+                                     "cleaner_alternative_min_z: 0", "0.894 times as often, 0.5");
 }
 
 TEST(MergeChainAlternativesTest, AnUnwalledAlternativeAtTheSameRotationDoesNotRefuse) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun7.txt");
-  const MergeCase merge_case = cut(kRightMergeWithASlidUnwalledFit);
-  merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chainWith(""));
   // Without the least turn the slid fit refuses it as if it were the building turned.
-  const MergeResult any_turn =
-      chainWith("walls_alternative_min_turn_deg: 0")->merge(merge_case.a, merge_case.b);
-  EXPECT_FALSE(any_turn.accepted);
-  EXPECT_NE(any_turn.reason.find("the walls it leaves unmet"), std::string::npos)
-      << any_turn.reason;
+  expectRightByDefaultAndRefusedWith(cut(kRightMergeWithASlidUnwalledFit),
+                                     "walls_alternative_min_turn_deg: 0",
+                                     "the walls it leaves unmet");
 }
 
 TEST(MergeChainAlternativesTest, AnAlternativeCleanerBeyondChanceStillRefuses) {
