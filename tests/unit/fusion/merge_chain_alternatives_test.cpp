@@ -82,10 +82,10 @@ const CropPair kRightMergeWithALesserAlternative{
     {{477, 443}, 268, 0.5772932185111803, {9, 19}, {18, 40}},
     {{567, 540}, 276, -2.582073759542, {14, 28}, {1, 19}}};
 
-// Case 152 of `--seed 20` (Carpin's robot 1, 74 % overlap): right merges at V 0.978 over about
-// 12 100 known cells; a room turned by 90° also passes on its own, over about 1100 cells that
-// disagree 0.89 times as often: about 22 disagreements where the accepted rate gives 25, half a
-// standard deviation, chance.
+// Case 152 of `--seed 20` (Carpin's robot 1, 74 % overlap): the chain finds the truth at V 0.978
+// over about 12 100 known cells; a room turned by 90° also passes on its own, over about 1100 cells
+// that disagree 0.89 times as often: about 22 disagreements where the accepted rate gives 25, half
+// a standard deviation, chance. The default chain refuses it (the rate alone decides).
 const CropPair kRightMergeWithAScarcelyCleanerAlternative{
     "carpin-robot1_cast.txt",
     152,
@@ -127,13 +127,13 @@ MergeResult expectTurnedWithoutTheCheckAndRefusedWithIt(const MergeCase& merge_c
   return without;
 }
 
-// A right merge by the default chain that `chain_section` (a bar under test turned off) refuses
-// for another placement, with `reason_part` in its reason.
-void expectRightByDefaultAndRefusedWith(const MergeCase& merge_case,
-                                        const std::string& chain_section,
-                                        const std::string& reason_part) {
-  merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chainWith(""));
-  const MergeResult refused = chainWith(chain_section)->merge(merge_case.a, merge_case.b);
+// A case the chain with `right_section` merges right and the chain with `refused_section`
+// refuses for another placement, with `reason_part` in its reason.
+void expectRightWithAndRefusedWith(const MergeCase& merge_case, const std::string& right_section,
+                                   const std::string& refused_section,
+                                   const std::string& reason_part) {
+  merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chainWith(right_section));
+  const MergeResult refused = chainWith(refused_section)->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(refused.accepted);
   EXPECT_NE(refused.reason.find("another placement"), std::string::npos) << refused.reason;
   EXPECT_NE(refused.reason.find(reason_part), std::string::npos) << refused.reason;
@@ -142,7 +142,7 @@ void expectRightByDefaultAndRefusedWith(const MergeCase& merge_case,
 TEST(MergeChainAlternativesTest, TheSettingsAreReadAndRangeChecked) {
   const ChainSettings defaults;
   EXPECT_DOUBLE_EQ(defaults.cleaner_alternative_rate, 1.0);
-  EXPECT_DOUBLE_EQ(defaults.cleaner_alternative_min_z, 4.0);
+  EXPECT_DOUBLE_EQ(defaults.cleaner_alternative_min_z, 0.0);
   EXPECT_DOUBLE_EQ(defaults.walls_alternative_min_turn_deg, 20.0);
   EXPECT_DOUBLE_EQ(defaults.slid_alternative_rate, 0.0);
   EXPECT_DOUBLE_EQ(defaults.walls_alternative_rate, 0.7);
@@ -253,38 +253,37 @@ TEST(MergeChainAlternativesTest, AnUnwalledAlternativeThatOverlapsLessDoesNotRef
 
 TEST(MergeChainAlternativesTest, ARightMergeOutweighsALesserAlternative) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
-  // At a bar of 2 on the rate alone, its alternative (1.8 times as many disagreements) refuses
-  // it: it was weighed.
+  // At a bar of 2, its alternative (1.8 times as many disagreements) refuses it: it was weighed.
   const MergeCase merge_case = cut(kRightMergeWithALesserAlternative);
-  const MergeResult strict = chainWith("cleaner_alternative_rate: 2, cleaner_alternative_min_z: 0")
-                                 ->merge(merge_case.a, merge_case.b);
+  const MergeResult strict =
+      chainWith("cleaner_alternative_rate: 2")->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(strict.accepted);
   EXPECT_NE(strict.reason.find("another placement"), std::string::npos) << strict.reason;
   const std::unique_ptr<MapMerger> chain = chainWith("");
   merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
 }
 
-TEST(MergeChainAlternativesTest, AnAlternativeCleanerByChanceDoesNotRefuse) {
+TEST(MergeChainAlternativesTest, WithTheBarInDeviationsAnAlternativeCleanerByChanceDoesNotRefuse) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
-  // On the rate alone the turned room refuses it, as it did before the bar in deviations.
-  expectRightByDefaultAndRefusedWith(cut(kRightMergeWithAScarcelyCleanerAlternative),
-                                     "cleaner_alternative_min_z: 0", "0.894 times as often, 0.5");
+  // On the rate alone (the default) the turned room refuses it.
+  expectRightWithAndRefusedWith(cut(kRightMergeWithAScarcelyCleanerAlternative),
+                                "cleaner_alternative_min_z: 4", "", "0.894 times as often, 0.5");
 }
 
 TEST(MergeChainAlternativesTest, AnUnwalledAlternativeAtTheSameRotationDoesNotRefuse) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun7.txt");
   // Without the least turn the slid fit refuses it as if it were the building turned.
-  expectRightByDefaultAndRefusedWith(cut(kRightMergeWithASlidUnwalledFit),
-                                     "walls_alternative_min_turn_deg: 0",
-                                     "the walls it leaves unmet");
+  expectRightWithAndRefusedWith(cut(kRightMergeWithASlidUnwalledFit), "",
+                                "walls_alternative_min_turn_deg: 0", "the walls it leaves unmet");
 }
 
-TEST(MergeChainAlternativesTest, AnAlternativeCleanerBeyondChanceStillRefuses) {
+TEST(MergeChainAlternativesTest, WithTheBarInDeviationsAnAlternativeCleanerBeyondChanceRefuses) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   // The half-turned hall of case 118 of set 8: the truth disagrees 0.44 times as often over
   // about 8900 cells, 8 standard deviations below the accepted rate.
   const MergeCase merge_case = cut(kHallTurnedByAHalf);
-  const MergeResult refused = chainWith("")->merge(merge_case.a, merge_case.b);
+  const MergeResult refused =
+      chainWith("cleaner_alternative_min_z: 4")->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(refused.accepted);
   EXPECT_NE(refused.reason.find("standard deviations below"), std::string::npos) << refused.reason;
   // A bar above its deviations lets the wrong half turn through.

@@ -217,11 +217,7 @@ TEST(MergeChainRivalsTest, TheConfiguredChainDoesNotAcceptTheWrongWing) {
   const MergeResult swept =
       mergeWingWith(merge_case, "slid_rivals: false, cleaner_alternative_rate: 0");
   EXPECT_FALSE(swept.accepted) << "the sweep finds the cleaner truth at the wrong wing's rotation";
-  // The exhaustive search's own hypotheses hold the truth: weighed on the rate alone it refuses
-  // the wrong wing, though its disagreements lie only 0.4 standard deviations below the wrong
-  // wing's rate, within chance (cleaner_alternative_min_z); the sweep above is what decides.
-  const MergeResult weighed = mergeWingWith(
-      merge_case, "slid_rivals: false, sweep_rivals: false, cleaner_alternative_min_z: 0");
+  const MergeResult weighed = mergeWingWith(merge_case, "slid_rivals: false, sweep_rivals: false");
   EXPECT_FALSE(weighed.accepted) << "the exhaustive search's own hypotheses hold the truth";
   EXPECT_NE(weighed.reason.find("another placement"), std::string::npos) << weighed.reason;
 }

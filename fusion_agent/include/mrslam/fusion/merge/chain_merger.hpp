@@ -11,12 +11,11 @@
 // explains the overlap more cleanly (a building whose rooms repeat along a corridor). With
 // `cleaner_alternative_rate`, the hypotheses of the steps' own searches at every rotation
 // (MergeResult::hypotheses) are judged alone, and one that passes elsewhere and fits more cleanly
-// beyond chance (`cleaner_alternative_min_z`) refuses the merge (a hall that looks alike turned by
-// a quarter or a half); with
-// `alternative_sweep_degrees`, so do the peaks of a sweep over every translation at the accepted
-// rotation turned by those angles (the right turn of such a hall where it overlaps too little to
-// be among the search's hypotheses). With `walls_alternative_rate`, so does one refused alone
-// only by the structure test that fits more cleanly over more known cells
+// (with `cleaner_alternative_min_z`: beyond chance) refuses the merge (a hall that looks alike
+// turned by a quarter or a half); with `alternative_sweep_degrees`, so do the peaks of a sweep over
+// every translation at the accepted rotation turned by those angles (the right turn of such a hall
+// where it overlaps too little to be among the search's hypotheses). With `walls_alternative_rate`,
+// so does one refused alone only by the structure test that fits more cleanly over more known cells
 // (`walls_alternative_overlap`), turned from the accepted transform
 // (`walls_alternative_min_turn_deg`). A transform so refused and its alternative stay undecided: a
 // later step's transform near either is refused too (`undecided_deg`). With
@@ -67,9 +66,10 @@ struct ChainSettings {
   double cleaner_alternative_rate = 1.0;
   /// ... and only when its disagreements are this many standard deviations fewer than its overlap
   /// would hold at the accepted transform's rate (z = (r n - dis) / sqrt(n r (1 - r)), n its
-  /// overlap, r the accepted rate): a slightly cleaner fit over few cells is chance, not a
-  /// building that looks alike turned; 0: the rate alone decides.
-  double cleaner_alternative_min_z = 4.0;
+  /// overlap, r the accepted rate): a fit cleaner by chance no longer refuses, and the placement
+  /// that overlaps more is taken; 0: off, the rate alone decides. Off by default: at 4 it gains
+  /// right merges but took one wrong quarter turn on case sets never used to tune it.
+  double cleaner_alternative_min_z = 0.0;
   /// The same for an alternative refused on its own only because its exact shift is not fixed
   /// (MergeRefusal::kEntropy or kTranslation: the maps fit there, slid along a corridor); 0: off
   /// (at 0.5 it refuses a wrong quarter turn and a right merge of the same figures alike).
