@@ -254,13 +254,8 @@ TEST(MergeChainAlternativesTest, AnUnwalledAlternativeThatOverlapsLessDoesNotRef
 TEST(MergeChainAlternativesTest, ARightMergeOutweighsALesserAlternative) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   // At a bar of 2, its alternative (1.8 times as many disagreements) refuses it: it was weighed.
-  const MergeCase merge_case = cut(kRightMergeWithALesserAlternative);
-  const MergeResult strict =
-      chainWith("cleaner_alternative_rate: 2")->merge(merge_case.a, merge_case.b);
-  EXPECT_FALSE(strict.accepted);
-  EXPECT_NE(strict.reason.find("another placement"), std::string::npos) << strict.reason;
-  const std::unique_ptr<MapMerger> chain = chainWith("");
-  merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
+  expectRightWithAndRefusedWith(cut(kRightMergeWithALesserAlternative), "",
+                                "cleaner_alternative_rate: 2", "passes every test on its own");
 }
 
 TEST(MergeChainAlternativesTest, WithTheBarInDeviationsAnAlternativeCleanerByChanceDoesNotRefuse) {
