@@ -43,8 +43,9 @@ std::vector<TorusPeak> clearedInTurn(cv::Mat& image, int count, int separation) 
     // A separation may exceed the rows or columns (up to the larger side): wrap any distance.
     const auto wrapped = [](int index, int size) { return ((index % size) + size) % size; };
     for (int dy = -separation; dy <= separation; ++dy) {
+      float* row = image.ptr<float>(wrapped(at.y + dy, image.rows));
       for (int dx = -separation; dx <= separation; ++dx) {
-        image.at<float>(wrapped(at.y + dy, image.rows), wrapped(at.x + dx, image.cols)) = 0.0f;
+        row[wrapped(at.x + dx, image.cols)] = 0.0f;
       }
     }
   }
