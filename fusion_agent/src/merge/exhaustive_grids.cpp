@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 namespace mrslam::fusion::exhaustive {
@@ -25,29 +26,108 @@ cv::Mat nearWalls(const SearchGrid& grid, int reach) {
   return near;
 }
 
+/// Whether each cell of row `y` is of class `wanted` and, when `near` holds any, not near a wall.
+void markWanted(const SearchGrid& grid, GridClass wanted, const cv::Mat& near, int y,
+                std::vector<std::uint8_t>& marks) {
+  const GridClass* row = grid.classes.data() + static_cast<std::size_t>(y) * grid.width;
+  for (int x = 0; x < grid.width; ++x) {
+    marks[static_cast<std::size_t>(x)] = row[x] == wanted ? 1 : 0;
+  }
+  if (!near.empty()) {
+    const std::uint8_t* near_row = near.ptr<std::uint8_t>(y);
+    for (int x = 0; x < grid.width; ++x) {
+      marks[static_cast<std::size_t>(x)] &= near_row[x] == 0 ? 1 : 0;
+    }
+  }
+}
+
 /// An even sample of the cells of class `wanted`; free cells only away from walls (a cell of
-/// misalignment must not put them on the other map's walls).
+/// misalignment must not put them on the other map's walls). Of the n such cells in row order,
+/// the i·n/k-th for i < k = min(n, max_count).
 std::vector<Eigen::Vector2d> cellsOf(const SearchGrid& grid, GridClass wanted, int max_count,
                                      int wall_margin) {
   const cv::Mat near = wanted == GridClass::kWall ? cv::Mat() : nearWalls(grid, wall_margin);
-  std::vector<Eigen::Vector2d> all;
+  std::vector<std::uint8_t> marks(static_cast<std::size_t>(grid.width));
+  std::vector<int> per_row(static_cast<std::size_t>(grid.height), 0);
+  std::size_t all = 0;
   for (int y = 0; y < grid.height; ++y) {
-    for (int x = 0; x < grid.width; ++x) {
-      if (grid.at(x, y) == wanted && (near.empty() || near.at<std::uint8_t>(y, x) == 0)) {
-        all.emplace_back(x, y);
-      }
+    markWanted(grid, wanted, near, y, marks);
+    int count = 0;
+    for (const std::uint8_t mark : marks) {
+      count += mark;
     }
+    per_row[static_cast<std::size_t>(y)] = count;
+    all += static_cast<std::size_t>(count);
   }
-  const std::size_t kept = std::min(all.size(), static_cast<std::size_t>(max_count));
+  const std::size_t kept = std::min(all, static_cast<std::size_t>(std::max(0, max_count)));
   std::vector<Eigen::Vector2d> sample;
-  for (std::size_t i = 0; i < kept; ++i) {
-    sample.push_back(all[i * all.size() / kept]);
+  sample.reserve(kept);
+  std::size_t seen = 0;  // wanted cells before the row
+  for (int y = 0; y < grid.height && sample.size() < kept; ++y) {
+    const std::size_t in_row = static_cast<std::size_t>(per_row[static_cast<std::size_t>(y)]);
+    if (sample.size() * all / kept >= seen + in_row) {
+      seen += in_row;  // the next pick lies on a later row
+      continue;
+    }
+    markWanted(grid, wanted, near, y, marks);
+    for (int x = 0; x < grid.width && sample.size() < kept; ++x) {
+      if (marks[static_cast<std::size_t>(x)] == 0) {
+        continue;
+      }
+      if (seen == sample.size() * all / kept) {
+        sample.emplace_back(x, y);
+      }
+      ++seen;
+    }
   }
   return sample;
 }
 
-/// Each grid cell's distance (grid cells) to the nearest wall.
-cv::Mat distanceToWalls(const SearchGrid& grid) {
+/// The distance of a squared distance as a float, as an exact distance transform gives it.
+float floatDistance(int squared) {
+  return std::sqrt(static_cast<float>(squared));
+}
+
+/// Marks of the cells within `reach` of each wall, each cell's least squared distance kept (on a
+/// grid padded by the reach, so that no mark needs a bounds check).
+std::vector<float> stampedDistances(const SearchGrid& grid, const std::vector<cv::Point>& walls,
+                                    double reach) {
+  const int radius = static_cast<int>(std::floor(reach));
+  const int stride = grid.width + 2 * radius;
+  std::vector<std::ptrdiff_t> offsets;
+  std::vector<int> offset_squares;
+  for (int dy = -radius; dy <= radius; ++dy) {
+    for (int dx = -radius; dx <= radius; ++dx) {
+      if (floatDistance(dx * dx + dy * dy) <= reach) {
+        offsets.push_back(static_cast<std::ptrdiff_t>(dy) * stride + dx);
+        offset_squares.push_back(dx * dx + dy * dy);
+      }
+    }
+  }
+  constexpr int kNone = std::numeric_limits<int>::max();
+  std::vector<int> squared(static_cast<std::size_t>(stride) * (grid.height + 2 * radius), kNone);
+  for (const cv::Point& wall : walls) {
+    int* at =
+        squared.data() + static_cast<std::ptrdiff_t>(wall.y + radius) * stride + wall.x + radius;
+    for (std::size_t i = 0; i < offsets.size(); ++i) {
+      at[offsets[i]] = std::min(at[offsets[i]], offset_squares[i]);
+    }
+  }
+  std::vector<float> distances(grid.classes.size(), std::numeric_limits<float>::infinity());
+  for (int y = 0; y < grid.height; ++y) {
+    const int* row = squared.data() + static_cast<std::ptrdiff_t>(y + radius) * stride + radius;
+    float* out = distances.data() + static_cast<std::size_t>(y) * grid.width;
+    for (int x = 0; x < grid.width; ++x) {
+      if (row[x] != kNone) {
+        out[x] = floatDistance(row[x]);
+      }
+    }
+  }
+  return distances;
+}
+
+/// The exact distance transform of the whole grid, infinite beyond `reach`.
+std::vector<float> transformedDistances(const SearchGrid& grid, double reach) {
   cv::Mat not_wall(grid.height, grid.width, CV_8U);
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
@@ -56,7 +136,38 @@ cv::Mat distanceToWalls(const SearchGrid& grid) {
   }
   cv::Mat distance;
   cv::distanceTransform(not_wall, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-  return distance;
+  std::vector<float> distances(grid.classes.size(), std::numeric_limits<float>::infinity());
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      const float d = distance.at<float>(y, x);
+      if (d <= reach) {
+        distances[static_cast<std::size_t>(y) * grid.width + static_cast<std::size_t>(x)] = d;
+      }
+    }
+  }
+  return distances;
+}
+
+/// Each grid cell's Euclidean distance (grid cells) to the nearest wall where it is at most
+/// `reach`, else infinite. Sparse walls mark the cells within `reach` of them; where that would
+/// visit more cells than the grid holds several times over (dense walls, a long reach), the
+/// whole grid's distance transform is taken: the same distances either way.
+std::vector<float> distancesNearWalls(const SearchGrid& grid, double reach) {
+  std::vector<cv::Point> walls;
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      if (grid.at(x, y) == GridClass::kWall) {
+        walls.emplace_back(x, y);
+      }
+    }
+  }
+  const double side = 2.0 * std::floor(reach) + 1.0;
+  constexpr double kMostVisitsPerCell = 8.0;
+  if (static_cast<double>(walls.size()) * side * side >
+      kMostVisitsPerCell * static_cast<double>(grid.classes.size())) {
+    return transformedDistances(grid, reach);
+  }
+  return stampedDistances(grid, walls, reach);
 }
 
 /// The cells of a padded grid that may hold a value other than 0: [x_begin, x_end) ×
@@ -154,12 +265,12 @@ std::vector<float> freeValueGrid(const SearchGrid& grid, int pad, int row_pad, i
 
 std::vector<float> valueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
                              const ExhaustiveSearchSettings& settings) {
-  const cv::Mat distance = distanceToWalls(grid);
+  const std::vector<float> distances = distancesNearWalls(grid, settings.wall_reach);
   std::vector<float> values(static_cast<std::size_t>(stride) * rows, 0.0f);
   const double two_sigma_sq = 2.0 * settings.wall_sigma * settings.wall_sigma;
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
-      const double d = distance.at<float>(y, x);
+      const double d = distances[static_cast<std::size_t>(y) * grid.width + x];
       float value = 0.0f;
       if (d <= settings.wall_reach) {
         value = static_cast<float>(std::exp(-d * d / two_sigma_sq));

@@ -333,12 +333,14 @@ class BranchAndBound {
   KeptLeaves& kept_;
 };
 
-/// The best `score` over turns of T_to_from about `pivot` within ±`turn` (in `steps` steps a
-/// side) and shifts within ±`shift` cells (T_to_from itself when none scores more).
-template <typename Score>
-ExhaustiveHypothesis bestNear(const Score& score, const GridTransform& T_to_from,
+/// The best score over turns of T_to_from about `pivot` within ±`turn` (in `steps` steps a side)
+/// and shifts within ±`shift` cells (T_to_from itself when none scores more). `score_turn(θ)`
+/// gives the score of the turn θ at a translation (a callable of t_cells): what a turn's shifts
+/// share is computed once.
+template <typename ScoreTurn>
+ExhaustiveHypothesis bestNear(const ScoreTurn& score_turn, const GridTransform& T_to_from,
                               const Eigen::Vector2d& pivot, double turn, int steps, int shift) {
-  ExhaustiveHypothesis best{T_to_from, score(T_to_from)};
+  ExhaustiveHypothesis best{T_to_from, score_turn(T_to_from.theta_rad)(T_to_from.t_cells)};
   const Eigen::Vector2d landed = T_to_from.apply(pivot);
   for (int k = -steps; k <= steps; ++k) {
     GridTransform turned;
@@ -347,10 +349,11 @@ ExhaustiveHypothesis bestNear(const Score& score, const GridTransform& T_to_from
     const double s = std::sin(turned.theta_rad);
     const Eigen::Vector2d base =
         landed - Eigen::Vector2d(c * pivot.x() - s * pivot.y(), s * pivot.x() + c * pivot.y());
+    const auto score_at = score_turn(turned.theta_rad);
     for (int dy = -shift; dy <= shift; ++dy) {
       for (int dx = -shift; dx <= shift; ++dx) {
         turned.t_cells = base + Eigen::Vector2d(dx, dy);
-        const double value = score(turned);
+        const double value = score_at(turned.t_cells);
         if (value > best.score) {
           best = {turned, value};
         }
@@ -379,29 +382,58 @@ class FineScorer {
     points_ = pointSet(from, fine);
   }
 
+  /// `from`'s points (grid cells of `from`) turned by one angle about `from`'s origin: the score
+  /// of that turn at any translation.
+  class Turned {
+   public:
+    Turned(const FineScorer& scorer, double theta_rad)
+        : scorer_(scorer),
+          walls_(turn(scorer.points_.walls, scorer.points_.centroid, theta_rad)),
+          free_(turn(scorer.points_.free, scorer.points_.centroid, theta_rad)) {}
+    double operator()(const Eigen::Vector2d& t_cells) const {
+      return scorer_.sum(walls_, t_cells, scorer_.walls_) +
+             scorer_.sum(free_, t_cells, scorer_.free_);
+    }
+
+   private:
+    static std::vector<Eigen::Vector2d> turn(const std::vector<Eigen::Vector2d>& points,
+                                             const Eigen::Vector2d& centroid, double theta_rad) {
+      const double c = std::cos(theta_rad);
+      const double s = std::sin(theta_rad);
+      std::vector<Eigen::Vector2d> turned;
+      turned.reserve(points.size());
+      for (const Eigen::Vector2d& point : points) {
+        const Eigen::Vector2d p = point + centroid;
+        turned.emplace_back(c * p.x() - s * p.y(), s * p.x() + c * p.y());
+      }
+      return turned;
+    }
+    const FineScorer& scorer_;
+    std::vector<Eigen::Vector2d> walls_;
+    std::vector<Eigen::Vector2d> free_;
+  };
+
   double score(const GridTransform& T_to_from) const {
-    return sum(T_to_from, points_.walls, walls_) + sum(T_to_from, points_.free, free_);
+    return Turned(*this, T_to_from.theta_rad)(T_to_from.t_cells);
   }
 
   /// The best score over turns within ±`turn` (in `steps` steps a side) about `from`'s walls'
   /// centroid and shifts within ±`shift` cells.
   ExhaustiveHypothesis refine(const GridTransform& T_to_from, double turn, int steps,
                               int shift) const {
-    return bestNear([this](const GridTransform& T) { return score(T); }, T_to_from,
+    return bestNear([this](double theta_rad) { return Turned(*this, theta_rad); }, T_to_from,
                     points_.centroid, turn, steps, shift);
   }
   const Eigen::Vector2d& pivot() const { return points_.centroid; }
 
  private:
-  double sum(const GridTransform& T_to_from, const std::vector<Eigen::Vector2d>& points,
+  /// The values at the turned points moved by t_cells (each rounded to its cell), summed.
+  double sum(const std::vector<Eigen::Vector2d>& turned, const Eigen::Vector2d& t_cells,
              const std::vector<float>& values) const {
-    const double c = std::cos(T_to_from.theta_rad);
-    const double s = std::sin(T_to_from.theta_rad);
     double total = 0.0;
-    for (const Eigen::Vector2d& point : points) {
-      const Eigen::Vector2d p = point + points_.centroid;
-      const int x = roundToInt(c * p.x() - s * p.y() + T_to_from.t_cells.x());
-      const int y = roundToInt(s * p.x() + c * p.y() + T_to_from.t_cells.y());
+    for (const Eigen::Vector2d& point : turned) {
+      const int x = roundToInt(point.x() + t_cells.x());
+      const int y = roundToInt(point.y() + t_cells.y());
       if (x >= 0 && y >= 0 && x < grid_to_.width && y < grid_to_.height) {
         total += values[static_cast<std::size_t>(y) * grid_to_.width + static_cast<std::size_t>(x)];
       }
@@ -520,7 +552,14 @@ double ExhaustiveScore::at(const GridTransform& T_to_from) const {
 
 ExhaustiveHypothesis ExhaustiveScore::bestNear(const GridTransform& T_to_from, double turn_rad,
                                                int turn_steps, int shift_cells) const {
-  const auto both = [this](const GridTransform& T) { return at(T); };
+  const auto both = [this](double theta_rad) {
+    return [this, theta_rad](const Eigen::Vector2d& t_cells) {
+      GridTransform T;
+      T.theta_rad = theta_rad;
+      T.t_cells = t_cells;
+      return at(T);
+    };
+  };
   const Eigen::Vector2d& pivot = parts_->forward.pivot();
   const ExhaustiveHypothesis coarse =
       fusion::bestNear(both, T_to_from, pivot, turn_rad, turn_steps, shift_cells);

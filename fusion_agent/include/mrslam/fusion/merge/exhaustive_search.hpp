@@ -10,10 +10,11 @@
 //    the cube of the side, the memory with its square; step 6 still ends at full resolution). Two
 //    value grids: what a wall of `from` scores there, exp(-d² / 2σ²) at distance d (grid cells)
 //    from `to`'s nearest wall while d ≤ `wall_reach`, else -`free_penalty` on free cells and 0 on
-//    unknown ones; and what a free cell of `from` scores there, `free_weight` on free cells,
-//    -`conflict_penalty` on walls and 0 on unknown ones. Open floor of both maps agrees, walls meet
-//    walls, and either map's walls on the other's open floor cost much: the truth of a small
-//    overlap has few such conflicts.
+//    unknown ones (d exact: each wall marks the cells within the reach of it, or, where walls are
+//    dense, the whole grid's distance transform); and what a free cell of `from` scores there,
+//    `free_weight` on free cells, -`conflict_penalty` on walls and 0 on unknown ones. Open floor
+//    of both maps agrees, walls meet walls, and either map's walls on the other's open floor cost
+//    much: the truth of a small overlap has few such conflicts.
 // 2. `from`'s walls and its free cells at least `free_margin` grid cells from its walls (a cell
 //    of misalignment must not put them on `to`'s walls), each an even sample of at most
 //    `max_points` / `max_free_points`, about the walls' centroid.
@@ -40,7 +41,8 @@
 // 5. The best leaves, no two alike (within `distinct_cells` cells at `from`'s centroid and
 //    `distinct_deg` degrees): the better of two alike ones is kept.
 // 6. Each leaf refined at full resolution (one grid cell a map cell; σ, reach and margin scaled
-//    alike): turns within one rotation step and shifts within a grid cell, then finer.
+//    alike): turns within one rotation step and shifts within a grid cell, then finer (the points
+//    turned once per turn, for all its shifts).
 // 7. With `both_ways`, steps 1-6 again with `to` moved onto `from` (inverted). All leaves are
 //    ranked by the score both ways at full resolution, that of `from` onto `to` plus that of
 //    `to` onto `from` (a wall of either map on the other's open floor costs alike), and the
