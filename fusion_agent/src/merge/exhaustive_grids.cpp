@@ -148,28 +148,6 @@ std::vector<float> transformedDistances(const SearchGrid& grid, double reach) {
   return distances;
 }
 
-/// Each grid cell's Euclidean distance (grid cells) to the nearest wall where it is at most
-/// `reach`, else infinite. Sparse walls mark the cells within `reach` of them; where that would
-/// visit more cells than the grid holds several times over (dense walls, a long reach), the
-/// whole grid's distance transform is taken: the same distances either way.
-std::vector<float> distancesNearWalls(const SearchGrid& grid, double reach) {
-  std::vector<cv::Point> walls;
-  for (int y = 0; y < grid.height; ++y) {
-    for (int x = 0; x < grid.width; ++x) {
-      if (grid.at(x, y) == GridClass::kWall) {
-        walls.emplace_back(x, y);
-      }
-    }
-  }
-  const double side = 2.0 * std::floor(reach) + 1.0;
-  constexpr double kMostVisitsPerCell = 8.0;
-  if (static_cast<double>(walls.size()) * side * side >
-      kMostVisitsPerCell * static_cast<double>(grid.classes.size())) {
-    return transformedDistances(grid, reach);
-  }
-  return stampedDistances(grid, walls, reach);
-}
-
 /// The cells of a padded grid that may hold a value other than 0: [x_begin, x_end) ×
 /// [y_begin, y_end); 0 everywhere else.
 struct ValuedArea {
@@ -207,6 +185,24 @@ std::vector<float> maxPooled(const std::vector<float>& finer, int stride, int ro
 }
 
 }  // namespace
+
+std::vector<float> distancesNearWalls(const SearchGrid& grid, double reach) {
+  std::vector<cv::Point> walls;
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      if (grid.at(x, y) == GridClass::kWall) {
+        walls.emplace_back(x, y);
+      }
+    }
+  }
+  const double side = 2.0 * std::floor(reach) + 1.0;
+  constexpr double kMostVisitsPerCell = 8.0;
+  if (static_cast<double>(walls.size()) * side * side >
+      kMostVisitsPerCell * static_cast<double>(grid.classes.size())) {
+    return transformedDistances(grid, reach);
+  }
+  return stampedDistances(grid, walls, reach);
+}
 
 SearchGrid toSearchGrid(const GridMap& map, int cell_size, const SimilaritySettings& classes) {
   SearchGrid grid;

@@ -59,6 +59,13 @@ struct ValuePyramid {
   int last_valued_row = 0;
 };
 
+/// Each grid cell's Euclidean distance (grid cells) to the nearest wall where it is at most
+/// `reach`, else infinite (row-major). Sparse walls mark the cells within `reach` of them; where
+/// that would visit more than 8 cells per cell of the grid (dense walls, a long reach), the whole
+/// grid's exact distance transform is taken. Either way a distance is the float square root of
+/// an integer, as OpenCV's exact transform (DIST_MASK_PRECISE) gives it.
+std::vector<float> distancesNearWalls(const SearchGrid& grid, double reach);
+
 /// What a free cell of `from` scores on each cell of `to`.
 std::vector<float> freeValueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
                                  const ExhaustiveSearchSettings& settings);

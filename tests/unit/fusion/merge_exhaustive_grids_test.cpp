@@ -1,13 +1,14 @@
-// The exhaustive search's grids (exhaustive_grids.hpp): the walls' value grid against one built
-// from OpenCV's exact distance transform, and the even sample of a map's cells against the
-// sample taken from the list of all of them.
+// The exhaustive search's grids (exhaustive_grids.hpp): the distances to the walls against
+// OpenCV's exact distance transform, and the even sample of a map's cells against the sample
+// taken from the list of all of them.
 
 #include "exhaustive_grids.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-#include <opencv2/imgproc.hpp>
+#include <limits>
 #include <random>
 
 namespace mrslam::fusion::exhaustive {
@@ -29,71 +30,75 @@ SearchGrid randomGrid(int width, int height, double wall_share, unsigned seed) {
   return grid;
 }
 
-/// valueGrid() as it was built on cv::distanceTransform (exact Euclidean distances).
-std::vector<float> referenceValueGrid(const SearchGrid& grid, int pad, int row_pad, int stride,
-                                      int rows, const ExhaustiveSearchSettings& settings) {
-  cv::Mat not_wall(grid.height, grid.width, CV_8U);
+/// Each cell's distance to the nearest wall by brute force over every wall (the float square root
+/// of the least squared distance, as OpenCV's exact transform gives it), infinite beyond `reach`.
+std::vector<float> bruteForceDistances(const SearchGrid& grid, double reach) {
+  std::vector<float> distances;
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
-      not_wall.at<std::uint8_t>(y, x) = grid.at(x, y) == GridClass::kWall ? 0 : 255;
-    }
-  }
-  cv::Mat distance;
-  cv::distanceTransform(not_wall, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-  std::vector<float> values(static_cast<std::size_t>(stride) * rows, 0.0f);
-  const double two_sigma_sq = 2.0 * settings.wall_sigma * settings.wall_sigma;
-  for (int y = 0; y < grid.height; ++y) {
-    for (int x = 0; x < grid.width; ++x) {
-      const double d = distance.at<float>(y, x);
-      float value = 0.0f;
-      if (d <= settings.wall_reach) {
-        value = static_cast<float>(std::exp(-d * d / two_sigma_sq));
-      } else if (grid.at(x, y) == GridClass::kFree) {
-        value = -static_cast<float>(settings.free_penalty);
+      int least = std::numeric_limits<int>::max();
+      for (int wy = 0; wy < grid.height; ++wy) {
+        for (int wx = 0; wx < grid.width; ++wx) {
+          if (grid.at(wx, wy) == GridClass::kWall) {
+            least = std::min(least, (wx - x) * (wx - x) + (wy - y) * (wy - y));
+          }
+        }
       }
-      values[static_cast<std::size_t>(y + row_pad) * stride + static_cast<std::size_t>(x + pad)] =
-          value;
+      const float d = least == std::numeric_limits<int>::max()
+                          ? std::numeric_limits<float>::infinity()
+                          : std::sqrt(static_cast<float>(least));
+      distances.push_back(d <= reach ? d : std::numeric_limits<float>::infinity());
     }
   }
-  return values;
+  return distances;
 }
 
 // Sparse walls mark only the cells within the reach of them; dense walls or a long reach take
-// the distance transform of the whole grid. Either way every value must equal, bit for bit, the
-// one the exact distance transform gives: reaches that are whole, fractional and none, padded or
-// not. (On this 61 × 47 grid, the last two variants take the transform, the others the marks.)
-TEST(ExhaustiveGridsTest, WallValuesEqualThoseOfAnExactDistanceTransform) {
+// OpenCV's exact distance transform of the whole grid. Either way every distance must equal, bit
+// for bit, the one found by brute force: reaches that are whole, fractional and none, no walls at
+// all. (On this 61 × 47 grid, the last two take the transform, the others the marks.) The value
+// grid, built on these distances, gives a wall's value where it is within reach and the open
+// floor's penalty beyond.
+TEST(ExhaustiveGridsTest, DistancesNearWallsAreTheExactDistances) {
   struct Variant {
     double wall_share;
     double reach;
-    double sigma;
-    int pad;
-    int row_pad;
   };
-  const Variant variants[] = {{0.002, 2.0, 1.0, 0, 0}, {0.02, 4.0, 2.0, 3, 1},
-                              {0.1, 2.5, 1.0, 5, 2},   {0.05, 0.0, 1.0, 2, 2},
-                              {0.0, 2.0, 1.0, 1, 1},   {0.3, 3.7, 1.5, 0, 4},
-                              {0.15, 6.0, 2.0, 2, 0}};
+  const Variant variants[] = {{0.002, 2.0}, {0.02, 4.0}, {0.1, 2.5}, {0.05, 0.0},
+                              {0.0, 2.0},   {0.3, 3.7},  {0.15, 6.0}};
   unsigned seed = 1;
   for (const Variant& variant : variants) {
     SCOPED_TRACE(testing::Message()
                  << "walls " << variant.wall_share << ", reach " << variant.reach);
     const SearchGrid grid = randomGrid(61, 47, variant.wall_share, seed++);
-    ExhaustiveSearchSettings settings;
-    settings.wall_reach = variant.reach;
-    settings.wall_sigma = variant.sigma;
-    const int stride = grid.width + 2 * variant.pad;
-    const int rows = grid.height + 2 * variant.row_pad;
-    const std::vector<float> values =
-        valueGrid(grid, variant.pad, variant.row_pad, stride, rows, settings);
-    const std::vector<float> reference =
-        referenceValueGrid(grid, variant.pad, variant.row_pad, stride, rows, settings);
-    ASSERT_EQ(values.size(), reference.size());
+    const std::vector<float> distances = distancesNearWalls(grid, variant.reach);
+    const std::vector<float> reference = bruteForceDistances(grid, variant.reach);
+    ASSERT_EQ(distances.size(), reference.size());
     int differing = 0;
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      differing += values[i] != reference[i];
+    for (std::size_t i = 0; i < distances.size(); ++i) {
+      differing += distances[i] != reference[i];
     }
     EXPECT_EQ(differing, 0);
+
+    ExhaustiveSearchSettings settings;
+    settings.wall_reach = variant.reach;
+    const int pad = 2;
+    const std::vector<float> values =
+        valueGrid(grid, pad, pad, grid.width + 2 * pad, grid.height + 2 * pad, settings);
+    for (int y = 0; y < grid.height; ++y) {
+      for (int x = 0; x < grid.width; ++x) {
+        const double d = reference[static_cast<std::size_t>(y) * grid.width + x];
+        const float value =
+            values[static_cast<std::size_t>(y + pad) * (grid.width + 2 * pad) + x + pad];
+        if (d <= variant.reach) {
+          ASSERT_EQ(value, static_cast<float>(std::exp(-d * d / 2.0))) << x << ", " << y;
+        } else if (grid.at(x, y) == GridClass::kFree) {
+          ASSERT_EQ(value, -static_cast<float>(settings.free_penalty)) << x << ", " << y;
+        } else {
+          ASSERT_EQ(value, 0.0f) << x << ", " << y;
+        }
+      }
+    }
   }
 }
 
