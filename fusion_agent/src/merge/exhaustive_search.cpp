@@ -552,12 +552,15 @@ double ExhaustiveScore::at(const GridTransform& T_to_from) const {
 
 ExhaustiveHypothesis ExhaustiveScore::bestNear(const GridTransform& T_to_from, double turn_rad,
                                                int turn_steps, int shift_cells) const {
+  // at(T) with each way's points turned once per turn: `to` onto `from` by T⁻¹, turned by -θ.
   const auto both = [this](double theta_rad) {
-    return [this, theta_rad](const Eigen::Vector2d& t_cells) {
+    return [forward = FineScorer::Turned(parts_->forward, theta_rad),
+            backward = FineScorer::Turned(parts_->backward, -theta_rad),
+            theta_rad](const Eigen::Vector2d& t_cells) {
       GridTransform T;
       T.theta_rad = theta_rad;
       T.t_cells = t_cells;
-      return at(T);
+      return forward(t_cells) + backward(T.inverse().t_cells);
     };
   };
   const Eigen::Vector2d& pivot = parts_->forward.pivot();
