@@ -9,14 +9,20 @@ namespace mrslam::fusion::exhaustive {
 
 namespace {
 
-/// Cells with a wall within `reach` grid cells (square, the cell itself included): 255, else 0.
-cv::Mat nearWalls(const SearchGrid& grid, int reach) {
+/// The grid's walls: 255 on a wall, else 0.
+cv::Mat wallImage(const SearchGrid& grid) {
   cv::Mat walls(grid.height, grid.width, CV_8U);
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
       walls.at<std::uint8_t>(y, x) = grid.at(x, y) == GridClass::kWall ? 255 : 0;
     }
   }
+  return walls;
+}
+
+/// Cells with a wall within `reach` grid cells (square, the cell itself included): 255, else 0.
+cv::Mat nearWalls(const SearchGrid& grid, int reach) {
+  cv::Mat walls = wallImage(grid);
   if (reach <= 0) {
     return walls;
   }
@@ -128,12 +134,8 @@ std::vector<float> stampedDistances(const SearchGrid& grid, const std::vector<cv
 
 /// The exact distance transform of the whole grid, infinite beyond `reach`.
 std::vector<float> transformedDistances(const SearchGrid& grid, double reach) {
-  cv::Mat not_wall(grid.height, grid.width, CV_8U);
-  for (int y = 0; y < grid.height; ++y) {
-    for (int x = 0; x < grid.width; ++x) {
-      not_wall.at<std::uint8_t>(y, x) = grid.at(x, y) == GridClass::kWall ? 0 : 255;
-    }
-  }
+  cv::Mat not_wall;
+  cv::bitwise_not(wallImage(grid), not_wall);
   cv::Mat distance;
   cv::distanceTransform(not_wall, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   std::vector<float> distances(grid.classes.size(), std::numeric_limits<float>::infinity());
