@@ -72,20 +72,21 @@ std::shared_ptr<const seed::SearchInputs> SeedMerger::searchInputsOf(const GridM
 seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& to,
                                             const seed::SearchInputs* reversed) const {
   seed::SearchInputs inputs;
-  inputs.all_samples = knownCells(from, tables_);
+  // Each map's own parts built the other way already are taken from there.
+  inputs.all_samples = reversed != nullptr ? reversed->all_to : knownCells(from, tables_);
+  inputs.all_to = reversed != nullptr ? reversed->all_samples : knownCells(to, tables_);
+  const KnownCellSampler sampler_from(inputs.all_samples, tables_);
   inputs.coarse_samples =
-      sampleKnownCells(inputs.all_samples, tables_, settings_.search_occupied_samples,
-                       settings_.search_free_samples);
-  inputs.fine_samples = sampleKnownCells(inputs.all_samples, tables_,
-                                         kFineSampleFactor * settings_.search_occupied_samples,
-                                         kFineSampleFactor * settings_.search_free_samples);
+      sampler_from.sample(settings_.search_occupied_samples, settings_.search_free_samples);
+  inputs.fine_samples = sampler_from.sample(kFineSampleFactor * settings_.search_occupied_samples,
+                                            kFineSampleFactor * settings_.search_free_samples);
   for (const CellSample& sample : inputs.all_samples) {
     inputs.pivot_from += Eigen::Vector2d(sample.x, sample.y);
   }
   inputs.pivot_from /= std::max<double>(1.0, static_cast<double>(inputs.all_samples.size()));
   inputs.to = codeImage(to, settings_.translation_window_delta + 2, tables_);
-  inputs.entropy_from = mapEntropy(from, tables_);
-  inputs.entropy_to = mapEntropy(to, tables_);
+  inputs.entropy_from = reversed != nullptr ? reversed->entropy_to : mapEntropy(from, tables_);
+  inputs.entropy_to = reversed != nullptr ? reversed->entropy_from : mapEntropy(to, tables_);
   if (reversed != nullptr && reversed->walls_from && reversed->walls_to) {
     inputs.walls_from = reversed->walls_to;  // each map's wall field, built the other way
     inputs.walls_to = reversed->walls_from;
@@ -98,7 +99,7 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
   inputs.from = codeImage(from, 1, tables_);
   inputs.wall_balance_to = wallBalanceImage(inputs.to);
   inputs.wall_balance_from = wallBalanceImage(inputs.from);
-  for (const CellSample& cell : knownCells(to, tables_)) {
+  for (const CellSample& cell : inputs.all_to) {
     if (tables_.isOccupied(cell.code)) {
       inputs.occupied_to.push_back(cell);
     }
@@ -106,9 +107,8 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
   if (settings_.wall_icp_iterations > 0) {
     inputs.nearest_wall_to = std::make_shared<const seed::NearestWall>(inputs.occupied_to);
     inputs.occupied_from = seed::occupiedCells(
-        settings_.wall_icp_samples > 0
-            ? sampleKnownCells(inputs.all_samples, tables_, settings_.wall_icp_samples, 0)
-            : inputs.all_samples,
+        settings_.wall_icp_samples > 0 ? sampler_from.sample(settings_.wall_icp_samples, 0)
+                                       : inputs.all_samples,
         tables_);
   }
   inputs.occupied_to_samples =

@@ -119,6 +119,7 @@ struct SearchInputs {
   std::vector<CellSample> coarse_samples;                ///< an even sample of `from`'s known cells
   std::vector<CellSample> fine_samples;                  ///< a denser sample for the ±1 cell steps
   std::vector<CellSample> all_samples;                   ///< every known cell of `from`
+  std::vector<CellSample> all_to;                        ///< every known cell of `to`
   Eigen::Vector2d pivot_from = Eigen::Vector2d::Zero();  ///< centre of `from`'s known cells
   CodeImage to;
   double entropy_from = 0.0;            ///< mapEntropy of `from` (block 9)

@@ -160,35 +160,50 @@ std::vector<CellSample> knownCells(const GridMap& map, const ComparisonTables& t
   return samples;
 }
 
+KnownCellSampler::KnownCellSampler(const std::vector<CellSample>& known,
+                                   const ComparisonTables& tables)
+    : known_(known) {
+  for (std::size_t i = 0; i < known.size(); ++i) {
+    (tables.isOccupied(known[i].code) ? occupied_ : free_).push_back(i);
+  }
+}
+
+std::vector<std::size_t> KnownCellSampler::picks(const std::vector<std::size_t>& cells, int count) {
+  // The j-th pick is the first of the class's cells at or after the running share
+  // next_j = next_(j-1) + step, and after the pick before it.
+  const auto size = static_cast<double>(cells.size());
+  const double step = std::max(1.0, size / std::max(1, count));
+  std::vector<std::size_t> picked;
+  double next = 0.0;
+  double at = 0.0;  // the class's cell number of the next possible pick
+  while (true) {
+    at = std::max(at, std::ceil(next));
+    if (at >= size) {
+      return picked;
+    }
+    picked.push_back(cells[static_cast<std::size_t>(at)]);
+    at += 1.0;
+    next += step;
+  }
+}
+
+std::vector<CellSample> KnownCellSampler::sample(int occupied_count, int free_count) const {
+  const std::vector<std::size_t> occupied = picks(occupied_, occupied_count);
+  const std::vector<std::size_t> free = picks(free_, free_count);
+  std::vector<std::size_t> positions(occupied.size() + free.size());
+  std::merge(occupied.begin(), occupied.end(), free.begin(), free.end(), positions.begin());
+  std::vector<CellSample> samples;
+  samples.reserve(positions.size());
+  for (const std::size_t position : positions) {
+    samples.push_back(known_[position]);
+  }
+  return samples;
+}
+
 std::vector<CellSample> sampleKnownCells(const std::vector<CellSample>& known,
                                          const ComparisonTables& tables, int occupied_count,
                                          int free_count) {
-  std::size_t occupied = 0;
-  for (const CellSample& cell : known) {
-    occupied += tables.isOccupied(cell.code) ? 1 : 0;
-  }
-  const std::size_t free = known.size() - occupied;
-  // Take every cell whose running share crosses the next whole pick.
-  const double occupied_step =
-      std::max(1.0, static_cast<double>(occupied) / std::max(1, occupied_count));
-  const double free_step = std::max(1.0, static_cast<double>(free) / std::max(1, free_count));
-  // Index 1 counts the occupied cells, 0 the free ones (no branch on the class).
-  const double step[2] = {free_step, occupied_step};
-  double seen[2] = {0.0, 0.0};
-  double next[2] = {0.0, 0.0};
-  std::vector<CellSample> samples;
-  samples.reserve(std::min(known.size(), static_cast<std::size_t>(std::max(0, occupied_count)) +
-                                             static_cast<std::size_t>(std::max(0, free_count)) +
-                                             2));
-  for (const CellSample& cell : known) {
-    const int kind = tables.isOccupied(cell.code) ? 1 : 0;
-    if (seen[kind] >= next[kind]) {
-      samples.push_back(cell);
-      next[kind] += step[kind];
-    }
-    seen[kind] += 1.0;
-  }
-  return samples;
+  return KnownCellSampler(known, tables).sample(occupied_count, free_count);
 }
 
 CodeImage codeImage(const GridMap& map, int pad, const ComparisonTables& tables) {

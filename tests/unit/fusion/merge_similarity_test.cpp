@@ -189,6 +189,61 @@ TEST(MergeSimilarityTest, SampleTakesEachClassAtItsOwnEvenSteps) {
   EXPECT_EQ(sampleKnownCells(knownCells(map, tables), tables, 100, 100).size(), 30u);
 }
 
+// The sampler of several samples from one list picks what a walk over every cell picks: a cell
+// of a class is taken when the class's cells seen before it reach the running share, which then
+// grows by one step.
+std::vector<CellSample> walkedSample(const std::vector<CellSample>& known,
+                                     const ComparisonTables& tables, int occupied_count,
+                                     int free_count) {
+  double cells[2] = {0.0, 0.0};  // [0] free, [1] occupied
+  for (const CellSample& cell : known) {
+    cells[tables.isOccupied(cell.code) ? 1 : 0] += 1.0;
+  }
+  const double step[2] = {std::max(1.0, cells[0] / std::max(1, free_count)),
+                          std::max(1.0, cells[1] / std::max(1, occupied_count))};
+  double seen[2] = {0.0, 0.0};
+  double share[2] = {0.0, 0.0};
+  std::vector<CellSample> sample;
+  for (const CellSample& cell : known) {
+    const int kind = tables.isOccupied(cell.code) ? 1 : 0;
+    if (seen[kind] >= share[kind]) {
+      sample.push_back(cell);
+      share[kind] += step[kind];
+    }
+    seen[kind] += 1.0;
+  }
+  return sample;
+}
+
+TEST(MergeSimilarityTest, SamplerPicksWhatAWalkOverEveryCellPicks) {
+  const ComparisonTables tables{SimilaritySettings{}};
+  std::mt19937 random(11);
+  for (const double occupied_share : {0.0, 0.03, 0.2, 0.5, 1.0}) {
+    GridMap map = mapOf(97, 61);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (std::int8_t& cell : map.cells) {
+      const double known = unit(random);
+      cell = known < 0.3 ? GridMap::kUnknown
+                         : (unit(random) < occupied_share ? GridMap::kOccupied : GridMap::kFree);
+    }
+    const std::vector<CellSample> known = knownCells(map, tables);
+    const KnownCellSampler sampler(known, tables);
+    for (const auto& [occupied, free] : std::vector<std::pair<int, int>>{
+             {0, 0}, {1, 1}, {7, 300}, {150, 0}, {333, 1234}, {4000, 4000}, {-3, 5}}) {
+      const std::vector<CellSample> expected = walkedSample(known, tables, occupied, free);
+      const std::vector<CellSample> sampled = sampler.sample(occupied, free);
+      ASSERT_EQ(sampled.size(), expected.size())
+          << "share " << occupied_share << ", counts " << occupied << " and " << free;
+      for (std::size_t i = 0; i < expected.size(); ++i) {
+        EXPECT_EQ(sampled[i].x, expected[i].x) << i;
+        EXPECT_EQ(sampled[i].y, expected[i].y) << i;
+        EXPECT_EQ(sampled[i].code, expected[i].code) << i;
+      }
+      EXPECT_FALSE(expected.empty() && !known.empty()) << "a class always gives its first cell";
+    }
+  }
+}
+
 TEST(MergeSimilarityTest, RotatedSamplesLandOnTheirRoundedCells) {
   GridMap from = mapOf(5, 5, GridMap::kFree);
   from.at(4, 0) = GridMap::kOccupied;

@@ -136,6 +136,24 @@ std::vector<CellSample> sampleKnownCells(const std::vector<CellSample>& known,
                                          const ComparisonTables& tables, int occupied_count,
                                          int free_count);
 
+/// sampleKnownCells() several times over one list of known cells: the cells of each class are
+/// listed once, and each sample then costs only its picks. `known` must outlive the sampler.
+class KnownCellSampler {
+ public:
+  KnownCellSampler(const std::vector<CellSample>& known, const ComparisonTables& tables);
+  /// The same cells, in the same order, as sampleKnownCells(known, tables, occupied_count,
+  /// free_count).
+  std::vector<CellSample> sample(int occupied_count, int free_count) const;
+
+ private:
+  /// Positions in `known` of the class's picks (`cells`: the class's positions, in order).
+  static std::vector<std::size_t> picks(const std::vector<std::size_t>& cells, int count);
+
+  const std::vector<CellSample>& known_;
+  std::vector<std::size_t> occupied_;  ///< positions of the occupied cells in known_
+  std::vector<std::size_t> free_;      ///< positions of the free cells
+};
+
 /// Map `to` as cell codes and classes, padded by `pad` unknown cells on every side.
 struct CodeImage {
   cv::Mat codes;          ///< CV_8U, (height + 2 pad) × (width + 2 pad)
