@@ -161,12 +161,22 @@ struct ValuedArea {
 
 /// The max over each cell's 2 × 2 corners `step` apart of `finer` (whose values are 0 outside
 /// `area`); `area` becomes the coarser grid's (a window reaching into it from below or left).
-std::vector<float> maxPooled(const std::vector<float>& finer, int stride, int rows, int step,
-                             ValuedArea& area) {
+/// Only the rows within `read_rows` of the new area are set (all rows when it is negative).
+LevelValues maxPooled(const LevelValues& finer, int stride, int rows, int step, ValuedArea& area,
+                      int read_rows) {
   area.x_begin = std::max(0, area.x_begin - step);
   area.y_begin = std::max(0, area.y_begin - step);
-  std::vector<float> coarser(finer.size(), 0.0f);
-  for (int y = area.y_begin; y < area.y_end; ++y) {
+  LevelValues coarser(finer.size());  // unset: each row read is set below
+  const int set_begin = read_rows < 0 ? 0 : std::max(0, area.y_begin - read_rows);
+  const int set_end = read_rows < 0 ? rows : std::min(rows, area.y_end + read_rows);
+  for (int y = set_begin; y < set_end; ++y) {
+    float* row = coarser.data() + static_cast<std::size_t>(y) * stride;
+    if (y < area.y_begin || y >= area.y_end) {
+      std::fill(row, row + stride, 0.0f);
+      continue;
+    }
+    std::fill(row, row + area.x_begin, 0.0f);
+    std::fill(row + area.x_end, row + stride, 0.0f);
     for (int x = area.x_begin; x < area.x_end; ++x) {
       float best = finer[static_cast<std::size_t>(y) * stride + x];
       const bool right = x + step < stride;
@@ -180,7 +190,7 @@ std::vector<float> maxPooled(const std::vector<float>& finer, int stride, int ro
       if (right && up) {
         best = std::max(best, finer[static_cast<std::size_t>(y + step) * stride + x + step]);
       }
-      coarser[static_cast<std::size_t>(y) * stride + x] = best;
+      row[x] = best;
     }
   }
   return coarser;
@@ -246,9 +256,9 @@ PointSet pointSet(const SearchGrid& grid, const ExhaustiveSearchSettings& settin
   return set;
 }
 
-std::vector<float> freeValueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
-                                 const ExhaustiveSearchSettings& settings) {
-  std::vector<float> values(static_cast<std::size_t>(stride) * rows, 0.0f);
+LevelValues freeValueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
+                          const ExhaustiveSearchSettings& settings) {
+  LevelValues values(static_cast<std::size_t>(stride) * rows, 0.0f);
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
       const GridClass cell = grid.at(x, y);
@@ -261,17 +271,33 @@ std::vector<float> freeValueGrid(const SearchGrid& grid, int pad, int row_pad, i
   return values;
 }
 
-std::vector<float> valueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
-                             const ExhaustiveSearchSettings& settings) {
+LevelValues valueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
+                      const ExhaustiveSearchSettings& settings) {
   const std::vector<float> distances = distancesNearWalls(grid, settings.wall_reach);
-  std::vector<float> values(static_cast<std::size_t>(stride) * rows, 0.0f);
+  LevelValues values(static_cast<std::size_t>(stride) * rows, 0.0f);
   const double two_sigma_sq = 2.0 * settings.wall_sigma * settings.wall_sigma;
+  const auto wallValue = [&](double d) {
+    return static_cast<float>(std::exp(-d * d / two_sigma_sq));
+  };
+  // A distance is the square root of a whole number of squared cells (distancesNearWalls), so
+  // few distances occur: each one's value is worked out once, by the same formula.
+  constexpr int kMostSquares = 4096;
+  std::vector<float> distance_of_square;
+  std::vector<float> value_of_square;
+  for (int k = 0; k < kMostSquares && floatDistance(k) <= settings.wall_reach; ++k) {
+    distance_of_square.push_back(floatDistance(k));
+    value_of_square.push_back(wallValue(distance_of_square.back()));
+  }
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
-      const double d = distances[static_cast<std::size_t>(y) * grid.width + x];
+      const float distance = distances[static_cast<std::size_t>(y) * grid.width + x];
+      const double d = distance;
       float value = 0.0f;
       if (d <= settings.wall_reach) {
-        value = static_cast<float>(std::exp(-d * d / two_sigma_sq));
+        const auto k = static_cast<std::size_t>(std::lround(d * d));
+        value = k < distance_of_square.size() && distance_of_square[k] == distance
+                    ? value_of_square[k]
+                    : wallValue(d);
       } else if (grid.at(x, y) == GridClass::kFree) {
         value = -static_cast<float>(settings.free_penalty);
       }
@@ -297,10 +323,13 @@ ValuePyramid valuePyramid(const SearchGrid& grid, int pad,
   pyramid.first_valued_row.push_back(walls.y_begin);
   pyramid.last_valued_row = walls.y_end - 1;
   for (int h = 1; h <= settings.depth; ++h) {
-    pyramid.walls.push_back(
-        maxPooled(pyramid.walls.back(), pyramid.stride, pyramid.rows, 1 << (h - 1), walls));
-    pyramid.free.push_back(
-        maxPooled(pyramid.free.back(), pyramid.stride, pyramid.rows, 1 << (h - 1), free));
+    // A node reading level h sums its points' rows and the rows 2^h above them; stop_early
+    // leaves out the points whose rows hold no values (offsetsOnRows).
+    const int read_rows = settings.stop_early ? 1 << h : -1;
+    pyramid.walls.push_back(maxPooled(pyramid.walls.back(), pyramid.stride, pyramid.rows,
+                                      1 << (h - 1), walls, read_rows));
+    pyramid.free.push_back(maxPooled(pyramid.free.back(), pyramid.stride, pyramid.rows,
+                                     1 << (h - 1), free, read_rows));
     pyramid.first_valued_row.push_back(walls.y_begin);
   }
   return pyramid;

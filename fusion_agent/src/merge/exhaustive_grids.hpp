@@ -5,7 +5,9 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <opencv2/core.hpp>
+#include <utility>
 #include <vector>
 
 #include "mrslam/common/grid_map.hpp"
@@ -43,6 +45,30 @@ struct PointSet {
 /// The wall and free points of a map on the search grid (step 2).
 PointSet pointSet(const SearchGrid& grid, const ExhaustiveSearchSettings& settings);
 
+/// An allocator that leaves the values it makes room for unset (std::vector's resize and size
+/// constructor would zero them): the pyramid's coarser levels set only the rows that are read.
+template <typename T>
+struct UnsetAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = UnsetAllocator<U>;
+  };
+  UnsetAllocator() = default;
+  template <typename U>
+  explicit UnsetAllocator(const UnsetAllocator<U>& /*other*/) noexcept {}
+  template <typename U>
+  void construct(U* at) noexcept {
+    ::new (static_cast<void*>(at)) U;  // default-initialised: a float stays unset
+  }
+  template <typename U, typename... Args>
+  void construct(U* at, Args&&... args) {
+    ::new (static_cast<void*>(at)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// The values of one grid of a pyramid, row-major.
+using LevelValues = std::vector<float, UnsetAllocator<float>>;
+
 /// Step 1 and the bounds of step 4: the value grid of `to` padded with unknown cells, and its
 /// max-pooled versions. Padded by `pad` columns left and right and `row_pad` rows above and below:
 /// `pad` too when the search sums every point; 2^(depth+1) when it leaves out the points whose
@@ -52,9 +78,10 @@ struct ValuePyramid {
   int row_pad = 0;  ///< rows of padding on each side
   int stride = 0;
   int rows = 0;
-  std::vector<std::vector<float>> walls;  ///< level h: max over 2^h × 2^h windows (low corner)
-  std::vector<std::vector<float>> free;   ///< the same for `from`'s free cells
-  /// Level h is 0 on every row outside [first_valued_row[h], last_valued_row] (both grids).
+  std::vector<LevelValues> walls;  ///< level h: max over 2^h × 2^h windows (low corner)
+  std::vector<LevelValues> free;   ///< the same for `from`'s free cells
+  /// Level h is 0 on every row outside [first_valued_row[h], last_valued_row] (both grids). With
+  /// stop_early, level h ≥ 1 is set only on the rows the search reads: those within 2^h of them.
   std::vector<int> first_valued_row;
   int last_valued_row = 0;
 };
@@ -67,12 +94,12 @@ struct ValuePyramid {
 std::vector<float> distancesNearWalls(const SearchGrid& grid, double reach);
 
 /// What a free cell of `from` scores on each cell of `to`.
-std::vector<float> freeValueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
-                                 const ExhaustiveSearchSettings& settings);
+LevelValues freeValueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
+                          const ExhaustiveSearchSettings& settings);
 
 /// What a wall of `from` scores on each cell of `to`.
-std::vector<float> valueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
-                             const ExhaustiveSearchSettings& settings);
+LevelValues valueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, int rows,
+                      const ExhaustiveSearchSettings& settings);
 
 /// The value grids of `to` on its search grid, padded by `pad` columns, and their pyramids.
 ValuePyramid valuePyramid(const SearchGrid& grid, int pad,

@@ -429,7 +429,7 @@ class FineScorer {
  private:
   /// The values at the turned points moved by t_cells (each rounded to its cell), summed.
   double sum(const std::vector<Eigen::Vector2d>& turned, const Eigen::Vector2d& t_cells,
-             const std::vector<float>& values) const {
+             const exhaustive::LevelValues& values) const {
     double total = 0.0;
     for (const Eigen::Vector2d& point : turned) {
       const int x = roundToInt(point.x() + t_cells.x());
@@ -442,8 +442,8 @@ class FineScorer {
   }
 
   SearchGrid grid_to_;
-  std::vector<float> walls_;
-  std::vector<float> free_;
+  exhaustive::LevelValues walls_;
+  exhaustive::LevelValues free_;
   PointSet points_;
 };
 

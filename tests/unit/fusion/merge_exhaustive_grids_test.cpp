@@ -83,7 +83,7 @@ TEST(ExhaustiveGridsTest, DistancesNearWallsAreTheExactDistances) {
     ExhaustiveSearchSettings settings;
     settings.wall_reach = variant.reach;
     const int pad = 2;
-    const std::vector<float> values =
+    const LevelValues values =
         valueGrid(grid, pad, pad, grid.width + 2 * pad, grid.height + 2 * pad, settings);
     for (int y = 0; y < grid.height; ++y) {
       for (int x = 0; x < grid.width; ++x) {
@@ -97,6 +97,62 @@ TEST(ExhaustiveGridsTest, DistancesNearWallsAreTheExactDistances) {
         } else {
           ASSERT_EQ(value, 0.0f) << x << ", " << y;
         }
+      }
+    }
+  }
+}
+
+// Level h of a pyramid is the max of level 0 over the 2^h × 2^h window at each cell's low corner
+// (0 beyond the grid). With stop_early, level h is set only on the rows the search can read:
+// those within 2^h of the rows that hold values, every column of them.
+TEST(ExhaustiveGridsTest, PyramidLevelsAreWindowMaximaOnEveryRowTheSearchReads) {
+  for (const bool stop_early : {true, false}) {
+    SCOPED_TRACE(stop_early ? "stop_early" : "every point summed");
+    const SearchGrid grid = randomGrid(37, 29, 0.05, 3);
+    ExhaustiveSearchSettings settings;
+    settings.stop_early = stop_early;
+    settings.depth = 4;
+    const int pad = 40;
+    {
+      // Freed memory of NaNs, of each size a level can have, that the levels' unset values are
+      // likely to be made from: a row the search reads but the pyramid left unset shows.
+      std::vector<std::vector<float>> dirt;
+      for (const int row_pad : {pad, 2 << settings.depth}) {
+        const auto size =
+            static_cast<std::size_t>((grid.width + 2 * pad) * (grid.height + 2 * row_pad));
+        for (int i = 0; i < 12; ++i) {
+          dirt.emplace_back(size, std::numeric_limits<float>::quiet_NaN());
+        }
+      }
+    }
+    const ValuePyramid pyramid = valuePyramid(grid, pad, settings);
+    ASSERT_EQ(pyramid.walls.size(), 5u);
+    const auto at = [&](const LevelValues& level, int x, int y) {
+      return x < pyramid.stride && y < pyramid.rows
+                 ? level[static_cast<std::size_t>(y) * pyramid.stride + x]
+                 : 0.0f;
+    };
+    for (int h = 1; h <= settings.depth; ++h) {
+      const int side = 1 << h;
+      const int first_read = stop_early ? pyramid.first_valued_row[h] - side : 0;
+      const int last_read = stop_early ? pyramid.last_valued_row + side : pyramid.rows - 1;
+      ASSERT_GE(first_read, 0);
+      ASSERT_LT(last_read, pyramid.rows);
+      for (const bool walls : {true, false}) {
+        const std::vector<LevelValues>& levels = walls ? pyramid.walls : pyramid.free;
+        int differing = 0;
+        for (int y = first_read; y <= last_read; ++y) {
+          for (int x = 0; x < pyramid.stride; ++x) {
+            float most = -std::numeric_limits<float>::infinity();
+            for (int dy = 0; dy < side; ++dy) {
+              for (int dx = 0; dx < side; ++dx) {
+                most = std::max(most, at(levels[0], x + dx, y + dy));
+              }
+            }
+            differing += at(levels[static_cast<std::size_t>(h)], x, y) != most;
+          }
+        }
+        EXPECT_EQ(differing, 0) << "level " << h << (walls ? " walls" : " free");
       }
     }
   }
