@@ -36,19 +36,9 @@ class SampledComparison {
  public:
   SampledComparison(const GridMap& from, const GridMap& to, const SimilaritySettings& classes)
       : tables_(classes), to_(codeImage(to, 0, tables_)) {
-    std::vector<CellSample> in_rows;
     for (const CellSample& known : knownCells(from, tables_)) {
       if (known.x % 2 == 0 && known.y % 2 == 0) {
-        in_rows.push_back(known);
-      }
-    }
-    // Every kSpread-th cell from each start in turn: any first part of the list spreads over the
-    // whole map, so a placement that disagrees often is found out early (the sums, and so the
-    // answers, do not depend on the order).
-    samples_.reserve(in_rows.size());
-    for (std::size_t start = 0; start < kSpread; ++start) {
-      for (std::size_t i = start; i < in_rows.size(); i += kSpread) {
-        samples_.push_back(in_rows[i]);
+        samples_.push_back(known);
       }
     }
   }
@@ -63,7 +53,6 @@ class SampledComparison {
   }
 
  private:
-  static constexpr std::size_t kSpread = 61;
   ComparisonTables tables_;
   CodeImage to_;
   std::vector<CellSample> samples_;

@@ -282,11 +282,9 @@ LevelValues valueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, 
   // A distance is the square root of a whole number of squared cells (distancesNearWalls), so
   // few distances occur: each one's value is worked out once, by the same formula.
   constexpr int kMostSquares = 4096;
-  std::vector<float> distance_of_square;
   std::vector<float> value_of_square;
   for (int k = 0; k < kMostSquares && floatDistance(k) <= settings.wall_reach; ++k) {
-    distance_of_square.push_back(floatDistance(k));
-    value_of_square.push_back(wallValue(distance_of_square.back()));
+    value_of_square.push_back(wallValue(floatDistance(k)));
   }
   for (int y = 0; y < grid.height; ++y) {
     for (int x = 0; x < grid.width; ++x) {
@@ -294,9 +292,10 @@ LevelValues valueGrid(const SearchGrid& grid, int pad, int row_pad, int stride, 
       const double d = distance;
       float value = 0.0f;
       if (d <= settings.wall_reach) {
-        const auto k = static_cast<std::size_t>(std::lround(d * d));
-        value = k < distance_of_square.size() && distance_of_square[k] == distance
-                    ? value_of_square[k]
+        const long k = std::lround(d * d);
+        value = k < static_cast<long>(value_of_square.size()) &&
+                        floatDistance(static_cast<int>(k)) == distance
+                    ? value_of_square[static_cast<std::size_t>(k)]
                     : wallValue(d);
       } else if (grid.at(x, y) == GridClass::kFree) {
         value = -static_cast<float>(settings.free_penalty);
