@@ -4,7 +4,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -182,6 +184,73 @@ TEST(MergeCasesCommandTest, PrintsTheTruthRowOnlyWhenAsked) {
   const nlohmann::json json = jsonOfRun({"--json"}, "ceiling_json");
   ASSERT_FALSE(json.is_null());
   EXPECT_FALSE(json.contains("truth_ceiling"));
+}
+
+/// The JSON of `--truth-slide` on cases `ids` of set 13 (200 cases) with the seed method.
+nlohmann::json slidesOfSet13(const char* ids, const char* fixed_margin, const char* name) {
+  const auto folder = scratchFolder(name);
+  const CommandRun run =
+      runToEnd("tools/mrslam_merge_cases",
+               {"--maps", sharedDataPath("maps"), "--methods", "seed", "--seed", "13", "--only",
+                ids, "--truth-slide", "--fixed-margin", fixed_margin, "--json", "--details"},
+               (folder / "cases.log").string(), 120.0);
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json json = jsonLine(run.output);
+  EXPECT_FALSE(json.is_null()) << run.output;
+  return json;
+}
+
+int casesIn(const nlohmann::json& bands) {
+  int cases = 0;
+  for (const auto& band : bands) {
+    cases += band["cases"].get<int>();
+  }
+  return cases;
+}
+
+TEST(MergeCasesCommandTest, TellsTheTruthsTheMapsFixFromThoseTheyDoNot) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
+  // Set 13, both at 70 % overlap: the overlap of case 113 is open floor only (crop A's walls lie
+  // on crop B's unknown cells), so slid 3 cells it fits as cleanly; in case 2 every slide of 3
+  // cells or more puts about 400 more cells of one map's walls on the other's floor.
+  const nlohmann::json json = slidesOfSet13("2,113", "50", "slides");
+  ASSERT_FALSE(json.is_null());
+  EXPECT_EQ(json["fixed_margin"].get<long long>(), 50);
+  ASSERT_EQ(json["truth_slides"].size(), 2u);
+  const nlohmann::json& fixed = json["truth_slides"][0];
+  const nlohmann::json& open_floor = json["truth_slides"][1];
+  ASSERT_EQ(fixed["case"].get<int>(), 2);
+  ASSERT_EQ(open_floor["case"].get<int>(), 113);
+  EXPECT_TRUE(fixed["slid_found"].get<bool>());
+  EXPECT_GE(fixed["margin"].get<long long>(), 300) << fixed.dump();
+  EXPECT_TRUE(fixed["fixed"].get<bool>());
+  EXPECT_TRUE(open_floor["slid_found"].get<bool>());
+  EXPECT_LE(open_floor["margin"].get<long long>(), 5) << open_floor.dump();
+  EXPECT_FALSE(open_floor["fixed"].get<bool>());
+  // Each slide lies 3 to 8 cells from the truth.
+  for (const nlohmann::json& slide : json["truth_slides"]) {
+    const int longest =
+        std::max(std::abs(slide["slide"][0].get<int>()), std::abs(slide["slide"][1].get<int>()));
+    EXPECT_GE(longest, 3);
+    EXPECT_LE(longest, 8);
+  }
+  // The method's success is also counted on the one case the maps fix.
+  const nlohmann::json& seed = json["methods"]["seed"];
+  EXPECT_EQ(casesIn(seed["bands"]), 2);
+  EXPECT_EQ(casesIn(seed["bands_fixed"]), 1);
+  // The seed method places case 2 within a cell of the truth, whose slides cost as much there;
+  // it refuses case 113, which carries no margin of its own.
+  ASSERT_EQ(seed["cases"].size(), 2u);
+  const nlohmann::json& placed = seed["cases"][0];
+  ASSERT_TRUE(placed["accepted"].get<bool>()) << placed.dump();
+  EXPECT_GE(placed["slide_margin"].get<long long>(), 300) << placed.dump();
+  EXPECT_FALSE(seed["cases"][1]["accepted"].get<bool>());
+  EXPECT_FALSE(seed["cases"][1].contains("slide_margin"));
+  // At a bar of 0 cells both truths count as fixed.
+  const nlohmann::json lenient = slidesOfSet13("2,113", "0", "slides_lenient");
+  ASSERT_FALSE(lenient.is_null());
+  EXPECT_TRUE(lenient["truth_slides"][1]["fixed"].get<bool>());
+  EXPECT_EQ(casesIn(lenient["methods"]["seed"]["bands_fixed"]), 2);
 }
 
 TEST(MergeCasesCommandTest, SavesTheCropsAndCropAsWallsAtTheTruth) {

@@ -15,6 +15,13 @@
 // walls at the truth in red. With `--json --details` each case carries the transform accepted
 // (`affine`) and the truth (`truth_affine`) as image affines of crop A into crop B, the numbers
 // `mrslam merge B A --judge` takes.
+//
+// `--truth-slide` measures how well each positive case's maps fix the truth at all (whatever the
+// merger): the disagreeing cells the best placement slid 3-8 cells from the truth adds
+// (truth_slide.hpp). An overlap of one corridor wall and open floor costs almost nothing slid
+// along the wall: any merger that accepts it guesses. Each method's success is then also counted
+// on the cases whose margin reaches `--fixed-margin` (default 50 cells), and with `--details`
+// each accepted transform carries its own margin (`slide_margin`).
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -36,6 +43,7 @@
 #include "mrslam/fusion/merge/merger_registry.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
+#include "mrslam/fusion/merge/truth_slide.hpp"
 #include "mrslam/fusion/merge/wall_alignment.hpp"
 
 namespace {
@@ -52,9 +60,11 @@ struct CasesOptions {
   std::string config;  ///< optional YAML: a section of settings per method name
   bool json = false;
   bool details = false;
-  std::string only;          ///< comma-separated case ids to run (empty: all)
-  bool judge_truth = false;  ///< judge each positive case's exact truth by the seed acceptance
-  std::string save_dir;      ///< write each run case's crops and truth picture here (empty: no)
+  std::string only;             ///< comma-separated case ids to run (empty: all)
+  bool judge_truth = false;     ///< judge each positive case's exact truth by the seed acceptance
+  bool truth_slide = false;     ///< measure how well each positive case's maps fix its translation
+  long long fixed_margin = 50;  ///< with truth_slide: a truth is fixed when slides cost this much
+  std::string save_dir;         ///< write each run case's crops and truth picture here (empty: no)
 };
 
 /// The shared maps and the building each shows.
@@ -125,9 +135,18 @@ struct BandTally {
   int refused = 0;
 };
 
+/// One more case of `band`: right, wrong or refused.
+void countCase(BandTally& band, bool accepted, bool correct) {
+  ++band.cases;
+  band.success += accepted && correct;
+  band.false_accepts += accepted && !correct;
+  band.refused += !accepted;
+}
+
 struct MethodTally {
   std::string name;
   BandTally bands[kBands];
+  BandTally fixed_bands[kBands];  ///< `--truth-slide`: the cases whose maps fix the truth
   int negative_cases = 0;
   int negative_accepts = 0;
   std::vector<double> times_ms;
@@ -160,7 +179,42 @@ nlohmann::json affineJson(const mrslam::fusion::GridTransform& T_b_a, const Merg
   return {{affine(0, 0), affine(0, 1), affine(0, 2)}, {affine(1, 0), affine(1, 1), affine(1, 2)}};
 }
 
-void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger, MethodTally& tally) {
+/// `--truth-slide` for one case: whether it is measured (each accepted transform's margin too) and
+/// whether the case's maps fix its truth.
+struct CaseSlide {
+  bool measured = false;  ///< --truth-slide given
+  bool fixed = false;     ///< the truth's slides cost at least fixed_margin (or lose the overlap)
+};
+
+/// How many disagreeing cells the best placement slid 3-8 cells from `T_b_a` adds; null when no
+/// slide keeps the overlap.
+nlohmann::json slideMargin(const MergeCase& merge_case,
+                           const mrslam::fusion::GridTransform& T_b_a) {
+  const mrslam::fusion::TruthSlide slide =
+      mrslam::fusion::truthSlide(merge_case.a, merge_case.b, T_b_a);
+  return slide.slid_found ? nlohmann::json(slide.margin()) : nlohmann::json();
+}
+
+/// `--truth-slide` of a positive case's truth: its entry of truth_slides.
+nlohmann::json slideOfTruth(const MergeCase& merge_case, long long fixed_margin) {
+  const mrslam::fusion::TruthSlide slide =
+      mrslam::fusion::truthSlide(merge_case.a, merge_case.b, merge_case.T_b_a);
+  nlohmann::json json = {{"case", merge_case.id},
+                         {"overlap", merge_case.overlap},
+                         {"agreement", slide.at_truth.agreement},
+                         {"disagreement", slide.at_truth.disagreement},
+                         {"slid_found", slide.slid_found},
+                         {"fixed", !slide.slid_found || slide.margin() >= fixed_margin}};
+  if (slide.slid_found) {
+    json["margin"] = slide.margin();
+    json["slide"] = {slide.slide.x(), slide.slide.y()};
+    json["slid_agreement"] = slide.slid.agreement;
+  }
+  return json;
+}
+
+void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger,
+               const CaseSlide& case_slide, MethodTally& tally) {
   const auto start = std::chrono::steady_clock::now();
   const mrslam::fusion::MergeResult result = merger.merge(merge_case.a, merge_case.b);
   tally.times_ms.push_back(
@@ -178,6 +232,9 @@ void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger, M
       {"crop_b", cropJson(merge_case.source_b, merge_case.spec_b)}};
   if (result.accepted) {
     detail["affine"] = affineJson(result.T_to_from, merge_case);
+    if (case_slide.measured) {
+      detail["slide_margin"] = slideMargin(merge_case, result.T_to_from);
+    }
   }
   if (!merge_case.positive) {
     ++tally.negative_cases;
@@ -186,12 +243,12 @@ void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger, M
     return;
   }
   BandTally& band = tally.bands[bandOf(merge_case.overlap)];
-  ++band.cases;
   const mrslam::fusion::CaseError error = mrslam::fusion::caseError(merge_case, result.T_to_from);
   const bool correct = mrslam::fusion::isCorrect(error);
-  band.success += result.accepted && correct;
-  band.false_accepts += result.accepted && !correct;
-  band.refused += !result.accepted;
+  countCase(band, result.accepted, correct);
+  if (case_slide.fixed) {
+    countCase(tally.fixed_bands[bandOf(merge_case.overlap)], result.accepted, correct);
+  }
   detail["overlap"] = merge_case.overlap;
   detail["truth_affine"] = affineJson(merge_case.T_b_a, merge_case);
   detail["angle_error_deg"] = error.angle_rad * 180.0 / 3.14159265358979323846;
@@ -219,12 +276,14 @@ nlohmann::json bandJson(int b, const BandTally& band, const char* right_name,
           {"refused", band.refused}};
 }
 
-nlohmann::json toJson(const MethodTally& tally, bool details) {
+nlohmann::json toJson(const MethodTally& tally, bool details, bool with_fixed) {
   nlohmann::json bands = nlohmann::json::array();
+  nlohmann::json fixed_bands = nlohmann::json::array();
   int false_accepts = 0;
   for (int b = 0; b < kBands; ++b) {
     false_accepts += tally.bands[b].false_accepts;
     bands.push_back(bandJson(b, tally.bands[b], "success", "false_accepts"));
+    fixed_bands.push_back(bandJson(b, tally.fixed_bands[b], "success", "false_accepts"));
   }
   nlohmann::json json = {
       {"bands", bands},
@@ -233,10 +292,32 @@ nlohmann::json toJson(const MethodTally& tally, bool details) {
       {"false_accepts_negative", tally.negative_accepts},
       {"time_ms",
        {{"median", percentile(tally.times_ms, 0.5)}, {"p90", percentile(tally.times_ms, 0.9)}}}};
+  if (with_fixed) {
+    json["bands_fixed"] = fixed_bands;
+  }
   if (details) {
     json["cases"] = tally.details;
   }
   return json;
+}
+
+/// `--truth-slide`: each method's success per band on the cases whose maps fix the truth.
+void printFixedRows(const std::vector<MethodTally>& tallies, long long fixed_margin) {
+  std::cout << "on the cases whose truth slid 3-8 cells costs " << fixed_margin
+            << " disagreeing cells or more:\n";
+  for (const MethodTally& tally : tallies) {
+    std::cout << std::setw(10) << tally.name;
+    for (const BandTally& band : tally.fixed_bands) {
+      std::ostringstream cell;
+      cell << band.success << "/" << band.cases;
+      std::cout << std::setw(12) << cell.str();
+    }
+    int false_accepts = 0;
+    for (const BandTally& band : tally.fixed_bands) {
+      false_accepts += band.false_accepts;
+    }
+    std::cout << false_accepts << '\n';
+  }
 }
 
 void printTable(const std::vector<MethodTally>& tallies) {
@@ -289,11 +370,8 @@ nlohmann::json judgeTruth(const MergeCase& merge_case, mrslam::fusion::SeedMerge
   mrslam::fusion::alignAccepted(merge_case.a, merge_case.b, judge.settings().wall_alignment,
                                 judge.settings().similarity, result);
   const mrslam::fusion::CaseError error = mrslam::fusion::caseError(merge_case, result.T_to_from);
-  BandTally& band = tally.bands[bandOf(merge_case.overlap)];
-  ++band.cases;
-  band.success += result.accepted && mrslam::fusion::isCorrect(error);
-  band.false_accepts += result.accepted && !mrslam::fusion::isCorrect(error);
-  band.refused += !result.accepted;
+  countCase(tally.bands[bandOf(merge_case.overlap)], result.accepted,
+            mrslam::fusion::isCorrect(error));
   return {{"case", merge_case.id},
           {"overlap", merge_case.overlap},
           {"accepted", result.accepted},
@@ -364,6 +442,7 @@ int run(const CasesOptions& options) {
   std::unique_ptr<mrslam::fusion::SeedMerger> truth_judge;
   nlohmann::json truth_judgements = nlohmann::json::array();
   TruthTally truth_tally;
+  nlohmann::json truth_slides = nlohmann::json::array();
   try {
     only = parseCaseIds(options.only);
     const mrslam::Config config = options.config.empty()
@@ -396,8 +475,14 @@ int run(const CasesOptions& options) {
     if (truth_judge && merge_case.positive) {
       truth_judgements.push_back(judgeTruth(merge_case, *truth_judge, truth_tally));
     }
+    CaseSlide case_slide;
+    case_slide.measured = options.truth_slide;
+    if (options.truth_slide && merge_case.positive) {
+      truth_slides.push_back(slideOfTruth(merge_case, options.fixed_margin));
+      case_slide.fixed = truth_slides.back()["fixed"].get<bool>();
+    }
     for (std::size_t m = 0; m < mergers.size(); ++m) {
-      scoreCase(merge_case, *mergers[m], tallies[m]);
+      scoreCase(merge_case, *mergers[m], case_slide, tallies[m]);
     }
     if ((merge_case.id + 1) % 25 == 0) {
       std::cerr << "mrslam_merge_cases: " << merge_case.id + 1 << "/" << cases.size() << " cases\n";
@@ -406,7 +491,7 @@ int run(const CasesOptions& options) {
   if (options.json) {
     nlohmann::json methods = nlohmann::json::object();
     for (const MethodTally& tally : tallies) {
-      methods[tally.name] = toJson(tally, options.details);
+      methods[tally.name] = toJson(tally, options.details, options.truth_slide);
     }
     nlohmann::json json = {{"cases", options.settings.positive_cases},
                            {"negatives", options.settings.negative_cases},
@@ -416,12 +501,19 @@ int run(const CasesOptions& options) {
       json["truth_judgements"] = truth_judgements;
       json["truth_ceiling"] = toJson(truth_tally);
     }
+    if (options.truth_slide) {
+      json["fixed_margin"] = options.fixed_margin;
+      json["truth_slides"] = truth_slides;
+    }
     std::cout << json.dump() << '\n';
   } else {
     for (const nlohmann::json& judged : truth_judgements) {
       printTruthJudgement(judged);
     }
     printTable(tallies);
+    if (options.truth_slide) {
+      printFixedRows(tallies, options.fixed_margin);
+    }
     if (options.judge_truth) {
       printTruthCeiling(truth_tally);
     }
@@ -458,6 +550,15 @@ int main(int argc, char** argv) {
                "judge each positive case's exact truth by the seed acceptance alone and count "
                "per band those accepted within the tolerance (with --json: truth_judgements, "
                "truth_ceiling)");
+  app.add_flag("--truth-slide", options.truth_slide,
+               "measure per positive case the disagreeing cells the best placement slid 3-8 "
+               "cells from the truth adds (near 0: the maps do not fix the truth), and each "
+               "method's success on the cases they fix (with --json: truth_slides, bands_fixed, "
+               "and each accepted case's slide_margin with --details)");
+  app.add_option("--fixed-margin", options.fixed_margin,
+                 "with --truth-slide: the least margin of a truth the maps fix, cells")
+      ->capture_default_str()
+      ->check(CLI::Range(0LL, 100000000LL));
   app.add_option("--save", options.save_dir,
                  "folder: write each run case's crops and crop B with A's walls at the truth");
   app.set_version_flag("--version", mrslam::versionLine("merge_cases"));
