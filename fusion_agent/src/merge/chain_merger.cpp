@@ -12,6 +12,7 @@
 #include "mrslam/fusion/merge/random_walk.hpp"
 #include "mrslam/fusion/merge/reason_text.hpp"
 #include "mrslam/fusion/merge/similarity.hpp"
+#include "mrslam/fusion/merge/truth_slide.hpp"
 
 namespace mrslam::fusion {
 
@@ -198,6 +199,7 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
       if (settings_.refine_psi) {
         refineByPsi(from, to, settings_, result);
       }
+      refuseWhereSlidesCostLittle(from, to, settings_, step->name(), name(), result);
       return result;
     }
     reasons += (reasons.empty() ? "" : "; ") + step->name() + ": " + result.reason;
@@ -497,6 +499,26 @@ double verificationAt(const GridMap& from, const CodeImage& to, const GridTransf
 }
 
 }  // namespace
+
+void refuseWhereSlidesCostLittle(const GridMap& from, const GridMap& to,
+                                 const ChainSettings& settings, const std::string& step,
+                                 const std::string& chain, MergeResult& result) {
+  if (!result.accepted || settings.min_slide_margin_cells <= 0) {
+    return;
+  }
+  const TruthSlide slide = truthSlide(from, to, result.T_to_from);
+  if (!slide.slid_found || slide.margin() >= settings.min_slide_margin_cells) {
+    return;
+  }
+  result.accepted = false;
+  result.refusal = MergeRefusal::kTranslation;
+  result.method = chain;
+  result.reason = step + ": the maps hardly fix the shift: slid by (" +
+                  std::to_string(slide.slide.x()) + ", " + std::to_string(slide.slide.y()) +
+                  ") cells the placement disagrees on " + std::to_string(slide.margin()) +
+                  " more known cells (below " + std::to_string(settings.min_slide_margin_cells) +
+                  ")";
+}
 
 void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,
                  MergeResult& result) {

@@ -54,6 +54,8 @@ ChainSettings loadChainSettings(const Config& chain) {
   s.second_opinion_deg = chain.getDouble("second_opinion_deg", s.second_opinion_deg, {0.0, 180.0});
   s.second_opinion_turn_share =
       chain.getDouble("second_opinion_turn_share", s.second_opinion_turn_share, {0.0, 1.0});
+  s.min_slide_margin_cells =
+      chain.getInt("min_slide_margin_cells", s.min_slide_margin_cells, {0, 100000000});
   return s;
 }
 

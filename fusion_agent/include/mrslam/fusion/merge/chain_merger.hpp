@@ -124,6 +124,11 @@ struct ChainSettings {
   /// The step is asked only where the accepted transform's turn check came near its bar: a turn
   /// keeps at least this share of the walls' agreement (MergeResult::wall_turn_share).
   double second_opinion_turn_share = 0.9;
+  /// The chain's last check, on the transform it would return: refused when the placement slid 3
+  /// to 8 cells (keeping 0.9 of its overlap) disagrees on fewer than this many more known cells
+  /// (truth_slide.hpp): the maps hardly fix its shift. 0: off (the default; docs/merge_tuning.md,
+  /// thirty-fifth session: it refuses more right merges than wrong ones).
+  long long min_slide_margin_cells = 0;
 };
 
 class ChainMerger : public MapMerger {
@@ -226,6 +231,12 @@ class ChainMerger : public MapMerger {
   ChainSettings settings_;
   SeedMerger judge_;
 };
+
+/// With min_slide_margin_cells: refuses the accepted `result` of step `step` when its slides cost
+/// fewer disagreeing cells (see ChainSettings); `chain` names the refusing merger.
+void refuseWhereSlidesCostLittle(const GridMap& from, const GridMap& to,
+                                 const ChainSettings& settings, const std::string& step,
+                                 const std::string& chain, MergeResult& result);
 
 /// Refines an accepted result by ψ (see ChainSettings); `method` gains "+psi" when it is kept.
 void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,
