@@ -199,7 +199,8 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
       if (settings_.refine_psi) {
         refineByPsi(from, to, settings_, result);
       }
-      refuseWhereSlidesCostLittle(from, to, settings_, step->name(), name(), result);
+      refuseWhereSlidesCostLittle(from, to, settings_, judge_.settings().similarity, step->name(),
+                                  name(), result);
       return result;
     }
     reasons += (reasons.empty() ? "" : "; ") + step->name() + ": " + result.reason;
@@ -501,12 +502,15 @@ double verificationAt(const GridMap& from, const CodeImage& to, const GridTransf
 }  // namespace
 
 void refuseWhereSlidesCostLittle(const GridMap& from, const GridMap& to,
-                                 const ChainSettings& settings, const std::string& step,
-                                 const std::string& chain, MergeResult& result) {
+                                 const ChainSettings& settings, const SimilaritySettings& classes,
+                                 const std::string& step, const std::string& chain,
+                                 MergeResult& result) {
   if (!result.accepted || settings.min_slide_margin_cells <= 0) {
     return;
   }
-  const TruthSlide slide = truthSlide(from, to, result.T_to_from);
+  TruthSlideSettings slide_settings;
+  slide_settings.similarity = classes;
+  const TruthSlide slide = truthSlide(from, to, result.T_to_from, slide_settings);
   if (!slide.slid_found || slide.margin() >= settings.min_slide_margin_cells) {
     return;
   }

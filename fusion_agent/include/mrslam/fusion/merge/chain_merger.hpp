@@ -233,10 +233,12 @@ class ChainMerger : public MapMerger {
 };
 
 /// With min_slide_margin_cells: refuses the accepted `result` of step `step` when its slides cost
-/// fewer disagreeing cells (see ChainSettings); `chain` names the refusing merger.
+/// fewer disagreeing cells (see ChainSettings), cells classed by `classes`; `chain` names the
+/// refusing merger.
 void refuseWhereSlidesCostLittle(const GridMap& from, const GridMap& to,
-                                 const ChainSettings& settings, const std::string& step,
-                                 const std::string& chain, MergeResult& result);
+                                 const ChainSettings& settings, const SimilaritySettings& classes,
+                                 const std::string& step, const std::string& chain,
+                                 MergeResult& result);
 
 /// Refines an accepted result by ψ (see ChainSettings); `method` gains "+psi" when it is kept.
 void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,

@@ -1,11 +1,14 @@
 #pragma once
-// Whether the maps of a known-answer case fix its truth's translation at all, whatever the merger.
+// Whether two maps fix the translation of a placement at all, whatever the merger: the truth of a
+// known-answer case (`mrslam_merge_cases --truth-slide`) or the transform a merge would return
+// (the chain's last check, ChainSettings::min_slide_margin_cells).
 //
 // An overlap of one corridor wall and open floor, cut by the crops' edges, fits as well slid a
 // few cells along the wall: no merger can tell the truth from the slid placement, and one that
-// accepts either guesses. This measures that, from the maps and the truth alone: every placement
-// of `from` at the truth's rotation shifted by whole cells within ±reach is compared with `to`
+// accepts either guesses. This measures that, from the maps and the placement alone: every
+// placement of `from` at its rotation shifted by whole cells within ±reach is compared with `to`
 // over all known cells of `from` (agreement and disagreement, as the seed acceptance counts them).
+// Below, "the truth" is the placement given.
 //
 //   at the truth: the placement of least disagreement within one cell of the truth (the crops are
 //     resampled at different turns, so the exact truth can disagree a little more than a cell
