@@ -195,16 +195,21 @@ nlohmann::json slideMargin(const MergeCase& merge_case,
   return slide.slid_found ? nlohmann::json(slide.margin()) : nlohmann::json();
 }
 
-/// `--truth-slide` of a positive case's truth: its entry of truth_slides.
-nlohmann::json slideOfTruth(const MergeCase& merge_case, long long fixed_margin) {
-  const mrslam::fusion::TruthSlide slide =
-      mrslam::fusion::truthSlide(merge_case.a, merge_case.b, merge_case.T_b_a);
+/// Whether the maps fix a truth of this slide: its slides cost at least `fixed_margin` cells, or
+/// none keeps the overlap.
+bool isFixed(const mrslam::fusion::TruthSlide& slide, long long fixed_margin) {
+  return !slide.slid_found || slide.margin() >= fixed_margin;
+}
+
+/// `--truth-slide`: a positive case's entry of truth_slides, for the slide of its truth.
+nlohmann::json truthSlideJson(const MergeCase& merge_case, const mrslam::fusion::TruthSlide& slide,
+                              long long fixed_margin) {
   nlohmann::json json = {{"case", merge_case.id},
                          {"overlap", merge_case.overlap},
                          {"agreement", slide.at_truth.agreement},
                          {"disagreement", slide.at_truth.disagreement},
                          {"slid_found", slide.slid_found},
-                         {"fixed", !slide.slid_found || slide.margin() >= fixed_margin}};
+                         {"fixed", isFixed(slide, fixed_margin)}};
   if (slide.slid_found) {
     json["margin"] = slide.margin();
     json["slide"] = {slide.slide.x(), slide.slide.y()};
@@ -478,8 +483,10 @@ int run(const CasesOptions& options) {
     CaseSlide case_slide;
     case_slide.measured = options.truth_slide;
     if (options.truth_slide && merge_case.positive) {
-      truth_slides.push_back(slideOfTruth(merge_case, options.fixed_margin));
-      case_slide.fixed = truth_slides.back()["fixed"].get<bool>();
+      const mrslam::fusion::TruthSlide slide =
+          mrslam::fusion::truthSlide(merge_case.a, merge_case.b, merge_case.T_b_a);
+      truth_slides.push_back(truthSlideJson(merge_case, slide, options.fixed_margin));
+      case_slide.fixed = isFixed(slide, options.fixed_margin);
     }
     for (std::size_t m = 0; m < mergers.size(); ++m) {
       scoreCase(merge_case, *mergers[m], case_slide, tallies[m]);
