@@ -253,6 +253,41 @@ TEST(MergeCasesCommandTest, TellsTheTruthsTheMapsFixFromThoseTheyDoNot) {
   EXPECT_EQ(casesIn(lenient["methods"]["seed"]["bands_fixed"]), 2);
 }
 
+/// The chain's run of `--only` cases of set `seed` (200 positive cases) in scratch folder
+/// `name`: its output, text (`json` false) or JSON.
+CommandRun chainCases(const char* seed, const char* only, bool json, const char* name) {
+  std::vector<std::string> arguments = {
+      "--maps", sharedDataPath("maps"), "--methods", "chain", "--seed", seed, "--only", only};
+  if (json) {
+    arguments.push_back("--json");
+  }
+  return runToEnd("tools/mrslam_merge_cases", arguments,
+                  (scratchFolder(name) / "cases.log").string(), 120.0);
+}
+
+TEST(MergeCasesCommandTest, CountsTheGrossFalseAcceptsApartFromTheNearMisses) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun6.txt");
+  // The chain's wrong accepts of docs/merge_tuning.md: case 84 of set 31 turns Carpin's robot 1
+  // by 89 degrees (a gross false accept), case 66 of set 25 places LongRun6 0.6 cells and 1.3
+  // degrees from the truth (a near miss).
+  const CommandRun gross = chainCases("31", "84", true, "gross");
+  ASSERT_EQ(gross.exit_code, 0) << gross.output;
+  const nlohmann::json turned = jsonLine(gross.output)["methods"]["chain"];
+  EXPECT_EQ(turned["false_accepts_positive"].get<int>(), 1) << turned.dump();
+  EXPECT_EQ(turned["gross_false_accepts_positive"].get<int>(), 1) << turned.dump();
+  EXPECT_EQ(turned["bands"][0]["gross_false_accepts"].get<int>(), 1) << turned.dump();
+  const CommandRun near = chainCases("25", "66", true, "near_miss");
+  ASSERT_EQ(near.exit_code, 0) << near.output;
+  const nlohmann::json off = jsonLine(near.output)["methods"]["chain"];
+  EXPECT_EQ(off["false_accepts_positive"].get<int>(), 1) << off.dump();
+  EXPECT_EQ(off["gross_false_accepts_positive"].get<int>(), 0) << off.dump();
+  // The table says which are gross.
+  const CommandRun table = chainCases("31", "84", false, "gross_table");
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_THAT(table.output, testing::HasSubstr("1 (1 gross)"));
+}
+
 TEST(MergeCasesCommandTest, SavesTheCropsAndCropAsWallsAtTheTruth) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
   const auto folder = scratchFolder("save");

@@ -132,14 +132,17 @@ struct BandTally {
   int cases = 0;
   int success = 0;
   int false_accepts = 0;
+  int gross_false_accepts = 0;  ///< of false_accepts, those beyond a near miss
   int refused = 0;
 };
 
-/// One more case of `band`: right, wrong or refused.
-void countCase(BandTally& band, bool accepted, bool correct) {
+/// One more case of `band`: right, wrong (a near miss or gross) or refused.
+void countCase(BandTally& band, bool accepted, const mrslam::fusion::CaseError& error) {
+  const bool correct = mrslam::fusion::isCorrect(error);
   ++band.cases;
   band.success += accepted && correct;
   band.false_accepts += accepted && !correct;
+  band.gross_false_accepts += accepted && !correct && !mrslam::fusion::isNearMiss(error);
   band.refused += !accepted;
 }
 
@@ -249,10 +252,9 @@ void scoreCase(const MergeCase& merge_case, mrslam::fusion::MapMerger& merger,
   }
   BandTally& band = tally.bands[bandOf(merge_case.overlap)];
   const mrslam::fusion::CaseError error = mrslam::fusion::caseError(merge_case, result.T_to_from);
-  const bool correct = mrslam::fusion::isCorrect(error);
-  countCase(band, result.accepted, correct);
+  countCase(band, result.accepted, error);
   if (case_slide.fixed) {
-    countCase(tally.fixed_bands[bandOf(merge_case.overlap)], result.accepted, correct);
+    countCase(tally.fixed_bands[bandOf(merge_case.overlap)], result.accepted, error);
   }
   detail["overlap"] = merge_case.overlap;
   detail["truth_affine"] = affineJson(merge_case.T_b_a, merge_case);
@@ -270,7 +272,8 @@ double percentile(std::vector<double> values, double fraction) {
   return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
 }
 
-/// Band `b`'s counts, its right and wrong accepts under the given names.
+/// Band `b`'s counts, its right and wrong accepts under the given names (and of the wrong ones
+/// those beyond a near miss as "gross_" and that name).
 nlohmann::json bandJson(int b, const BandTally& band, const char* right_name,
                         const char* wrong_name) {
   return {{"overlap", {(2 + 2 * b) / 10.0, (4 + 2 * b) / 10.0}},
@@ -278,21 +281,33 @@ nlohmann::json bandJson(int b, const BandTally& band, const char* right_name,
           {right_name, band.success},
           {"rate", band.cases == 0 ? 0.0 : double(band.success) / band.cases},
           {wrong_name, band.false_accepts},
+          {std::string("gross_") + wrong_name, band.gross_false_accepts},
           {"refused", band.refused}};
+}
+
+/// The false accepts over the bands, and of them the gross ones.
+std::pair<int, int> falseAccepts(const BandTally (&bands)[kBands]) {
+  int all = 0;
+  int gross = 0;
+  for (const BandTally& band : bands) {
+    all += band.false_accepts;
+    gross += band.gross_false_accepts;
+  }
+  return {all, gross};
 }
 
 nlohmann::json toJson(const MethodTally& tally, bool details, bool with_fixed) {
   nlohmann::json bands = nlohmann::json::array();
   nlohmann::json fixed_bands = nlohmann::json::array();
-  int false_accepts = 0;
   for (int b = 0; b < kBands; ++b) {
-    false_accepts += tally.bands[b].false_accepts;
     bands.push_back(bandJson(b, tally.bands[b], "success", "false_accepts"));
     fixed_bands.push_back(bandJson(b, tally.fixed_bands[b], "success", "false_accepts"));
   }
+  const auto [false_accepts, gross] = falseAccepts(tally.bands);
   nlohmann::json json = {
       {"bands", bands},
       {"false_accepts_positive", false_accepts},
+      {"gross_false_accepts_positive", gross},
       {"negative_cases", tally.negative_cases},
       {"false_accepts_negative", tally.negative_accepts},
       {"time_ms",
@@ -306,6 +321,12 @@ nlohmann::json toJson(const MethodTally& tally, bool details, bool with_fixed) {
   return json;
 }
 
+/// "N (G gross)": false accepts and, of them, the gross ones; "N" when none is gross.
+std::string falseAcceptsText(std::pair<int, int> false_accepts) {
+  const auto [all, gross] = false_accepts;
+  return std::to_string(all) + (gross > 0 ? " (" + std::to_string(gross) + " gross)" : "");
+}
+
 /// `--truth-slide`: each method's success per band on the cases whose maps fix the truth.
 void printFixedRows(const std::vector<MethodTally>& tallies, long long fixed_margin) {
   std::cout << "on the cases whose truth slid 3-8 cells costs " << fixed_margin
@@ -317,11 +338,7 @@ void printFixedRows(const std::vector<MethodTally>& tallies, long long fixed_mar
       cell << band.success << "/" << band.cases;
       std::cout << std::setw(12) << cell.str();
     }
-    int false_accepts = 0;
-    for (const BandTally& band : tally.fixed_bands) {
-      false_accepts += band.false_accepts;
-    }
-    std::cout << false_accepts << '\n';
+    std::cout << falseAcceptsText(falseAccepts(tally.fixed_bands)) << '\n';
   }
 }
 
@@ -332,18 +349,17 @@ void printTable(const std::vector<MethodTally>& tallies) {
             << "p90 ms\n";
   for (const MethodTally& tally : tallies) {
     std::cout << std::setw(10) << tally.name;
-    int false_accepts = 0;
     for (const BandTally& band : tally.bands) {
       std::ostringstream cell;
       cell << band.success << "/" << band.cases;
       std::cout << std::setw(12) << cell.str();
-      false_accepts += band.false_accepts;
     }
     std::ostringstream negatives;
     negatives << tally.negative_accepts << "/" << tally.negative_cases;
-    std::cout << std::setw(18) << false_accepts << std::setw(18) << negatives.str() << std::fixed
-              << std::setprecision(1) << std::setw(12) << percentile(tally.times_ms, 0.5)
-              << percentile(tally.times_ms, 0.9) << std::defaultfloat << '\n';
+    std::cout << std::setw(18) << falseAcceptsText(falseAccepts(tally.bands)) << std::setw(18)
+              << negatives.str() << std::fixed << std::setprecision(1) << std::setw(12)
+              << percentile(tally.times_ms, 0.5) << percentile(tally.times_ms, 0.9)
+              << std::defaultfloat << '\n';
   }
 }
 
@@ -375,8 +391,7 @@ nlohmann::json judgeTruth(const MergeCase& merge_case, mrslam::fusion::SeedMerge
   mrslam::fusion::alignAccepted(merge_case.a, merge_case.b, judge.settings().wall_alignment,
                                 judge.settings().similarity, result);
   const mrslam::fusion::CaseError error = mrslam::fusion::caseError(merge_case, result.T_to_from);
-  countCase(tally.bands[bandOf(merge_case.overlap)], result.accepted,
-            mrslam::fusion::isCorrect(error));
+  countCase(tally.bands[bandOf(merge_case.overlap)], result.accepted, error);
   return {{"case", merge_case.id},
           {"overlap", merge_case.overlap},
           {"accepted", result.accepted},

@@ -291,4 +291,9 @@ bool isCorrect(const CaseError& error) {
   return error.distance_cells <= kSuccessDistanceCells && error.angle_rad <= kSuccessAngleRad;
 }
 
+bool isNearMiss(const CaseError& error) {
+  return !isCorrect(error) && error.distance_cells <= kNearMissDistanceCells &&
+         error.angle_rad <= kNearMissAngleRad;
+}
+
 }  // namespace mrslam::fusion

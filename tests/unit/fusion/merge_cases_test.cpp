@@ -6,6 +6,7 @@
 #include <random>
 
 #include "mrslam/common/map_loaders.hpp"
+#include "mrslam/fusion/merge/similarity.hpp"
 #include "test_data.hpp"
 
 namespace mrslam::fusion {
@@ -217,6 +218,28 @@ TEST(MergeCasesTest, SuccessNeedsTwoCellsAndOneDegree) {
   GridTransform wrapped = c.T_b_a;
   wrapped.theta_rad += 2 * kPi;
   EXPECT_TRUE(isCorrect(caseError(c, wrapped)));
+}
+
+TEST(MergeCasesTest, ANearMissLiesWithinFiveCellsAndThreeDegrees) {
+  const SourceMap source{"disc", "test", discMap(200, 5)};
+  const MergeCase c =
+      makeCase(source, specOf(20, 30, 90, 0.3, 3, 9), source, specOf(60, 50, 80, -1.0, 11, 0));
+  EXPECT_FALSE(isNearMiss(caseError(c, c.T_b_a)));  // right: no miss at all
+  GridTransform shifted = c.T_b_a;
+  shifted.t_cells.x() += 4.9;
+  EXPECT_TRUE(isNearMiss(caseError(c, shifted)));
+  shifted.t_cells.x() += 0.2;
+  EXPECT_FALSE(isNearMiss(caseError(c, shifted)));  // 5.1 cells: gross
+  // Turned about the centre of crop A's known cells, where the error is measured.
+  const Eigen::Vector2d centre = knownCentroid(c.a);
+  GridTransform turned = c.T_b_a;
+  turned.theta_rad += 2.9 * kPi / 180.0;
+  turned.t_cells += c.T_b_a.apply(centre) - turned.apply(centre);
+  EXPECT_NEAR(caseError(c, turned).distance_cells, 0.0, 1e-9);
+  EXPECT_TRUE(isNearMiss(caseError(c, turned)));
+  turned.theta_rad += 0.2 * kPi / 180.0;
+  turned.t_cells += c.T_b_a.apply(centre) - turned.apply(centre);
+  EXPECT_FALSE(isNearMiss(caseError(c, turned)));  // 3.1°: gross
 }
 
 TEST(MergeCasesTest, RealMapsGiveCasesInEveryBand) {

@@ -104,4 +104,11 @@ constexpr double kSuccessDistanceCells = 2.0;
 constexpr double kSuccessAngleRad = 1.0 * 3.14159265358979323846 / 180.0;
 bool isCorrect(const CaseError& error);
 
+/// A wrong transform that still puts crop A in the right place, a little off: within 5 cells
+/// and 3° of the truth (a merge the maps' later growth can mend). Beyond that a false accept is
+/// gross: a wing along, or a turn, of the building.
+constexpr double kNearMissDistanceCells = 5.0;
+constexpr double kNearMissAngleRad = 3.0 * 3.14159265358979323846 / 180.0;
+bool isNearMiss(const CaseError& error);
+
 }  // namespace mrslam::fusion
