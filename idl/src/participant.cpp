@@ -6,6 +6,7 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <chrono>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/qos/PublisherQos.hpp>
 #include <fastdds/dds/subscriber/qos/SubscriberQos.hpp>
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <mutex>
 #include <set>
+#include <sstream>
 #include <thread>
 
 namespace mrslam::dds {
@@ -93,6 +95,56 @@ void makeSecure(eprosima::fastdds::dds::DomainParticipantQos& qos, const DdsSett
 
 }  // namespace
 
+/// DDS Security's verdict on each remote participant, logged once per participant and counted:
+/// a robot whose credentials are refused is named in the log, not merely missing from the map.
+class Participant::AuthenticationLog : public eprosima::fastdds::dds::DomainParticipantListener {
+ public:
+  explicit AuthenticationLog(std::string name) : name_(std::move(name)) {}
+
+  void onParticipantAuthentication(
+      eprosima::fastdds::dds::DomainParticipant* /*participant*/,
+      eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override {
+    using Info = eprosima::fastrtps::rtps::ParticipantAuthenticationInfo;
+    std::ostringstream guid;
+    guid << info.guid.guidPrefix;
+    const bool authorized = info.status == Info::AUTHORIZED_PARTICIPANT;
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::set<std::string>& seen = authorized ? authenticated_ : refused_;
+    if (!seen.insert(guid.str()).second) {
+      return;  // a handshake retried: logged already
+    }
+    if (authorized) {
+      spdlog::info("{}: DDS Security: participant {} authenticated", name_, guid.str());
+    } else {
+      spdlog::warn(
+          "{}: DDS Security: participant {} failed authentication (no credentials, or another "
+          "CA's); nothing of it is read",
+          name_, guid.str());
+    }
+  }
+
+  /// One line of the counts, when the participant is done.
+  void summarize() const {
+    spdlog::info("{}: DDS Security: {} participant(s) authenticated, {} refused", name_,
+                 authenticated(), refused());
+  }
+
+  int authenticated() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return static_cast<int>(authenticated_.size());
+  }
+  int refused() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return static_cast<int>(refused_.size());
+  }
+
+ private:
+  std::string name_;
+  mutable std::mutex mutex_;
+  std::set<std::string> authenticated_;  ///< GUID prefixes
+  std::set<std::string> refused_;
+};
+
 Participant::Participant(const DdsSettings& settings, const std::string& name)
     : domain_id_(settings.domain_id) {
   loadProfilesOnce(settings.profiles_file);
@@ -113,7 +165,13 @@ Participant::Participant(const DdsSettings& settings, const std::string& name)
     spdlog::info("{}: DDS Security as '{}' ({})", name, settings.security_identity,
                  settings.security_dir);
   }
-  participant_ = factory->create_participant(settings.domain_id, qos);
+  if (!settings.security_dir.empty()) {
+    authentication_log_ = std::make_unique<AuthenticationLog>(name);
+  }
+  // The listener hears only the authentications: no status of the endpoints (their own
+  // listeners take those).
+  participant_ = factory->create_participant(settings.domain_id, qos, authentication_log_.get(),
+                                             eprosima::fastdds::dds::StatusMask::none());
   if (participant_ == nullptr) {
     throw DdsError("cannot create DDS participant '" + name + "' on domain " +
                    std::to_string(settings.domain_id) + " with profile '" +
@@ -131,6 +189,17 @@ Participant::~Participant() {
     participant_->delete_contained_entities();
     DomainParticipantFactory::get_instance()->delete_participant(participant_);
   }
+  if (authentication_log_) {
+    authentication_log_->summarize();
+  }
+}
+
+int Participant::authenticatedParticipants() const {
+  return authentication_log_ ? authentication_log_->authenticated() : 0;
+}
+
+int Participant::refusedParticipants() const {
+  return authentication_log_ ? authentication_log_->refused() : 0;
 }
 
 eprosima::fastdds::dds::Topic* Participant::topic(const std::string& name,

@@ -1,7 +1,8 @@
 // DDS Security (PKI-DH, Access-Permissions, AES-GCM-GMAC) with the credentials of
 // scripts/make_test_pki.sh: a robot and a fusion agent of one PKI exchange maps; participants
 // without credentials, or with credentials from another CA, read none of the team's maps, and
-// the grids they publish never reach its global map.
+// the grids they publish never reach its global map. The agents log whom they authenticated and
+// whose authentication failed.
 
 #include <gtest/gtest.h>
 
@@ -75,6 +76,20 @@ TEST(SecurityTest, OnlyParticipantsWithValidCredentialsExchangeMaps) {
   }
   for (auto* agent : {robot2.get(), robot3.get()}) {
     agent->signal(SIGKILL);
+  }
+  // Each secured agent logs the participants it authenticated and those it refused. The secure
+  // fusion agent, started first, hears every other participant: it refuses at least the two
+  // without credentials (the rogues' handshakes fail on one side or both). Participants
+  // without security log neither.
+  EXPECT_TRUE(waitForLog(out / "robot1.log", "authenticated", 1, 0.0)) << logOf(*robot1);
+  EXPECT_TRUE(waitForLog(out / "robot2.log", "authenticated", 1, 0.0)) << logOf(*robot2);
+  EXPECT_TRUE(waitForLog(out / "secure.log", "failed authentication", 2, 0.0)) << logOf(*secure);
+  // Its last word counts them: robot1 is the only other participant of its CA.
+  EXPECT_TRUE(
+      waitForLog(out / "secure.log", "DDS Security: 1 participant(s) authenticated", 1, 0.0))
+      << logOf(*secure);
+  for (const char* plain_log : {"plain.log", "robot3.log"}) {
+    EXPECT_FALSE(waitForLog(out / plain_log, "DDS Security: participant", 1, 0.0)) << plain_log;
   }
   const nlohmann::json global = robotsOf(out / "secure");
   ASSERT_EQ(global["robots"].size(), 1u) << global.dump();

@@ -11,6 +11,7 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -48,6 +49,11 @@ class Participant {
   eprosima::fastdds::dds::DomainParticipant* get() const { return participant_; }
   int domainId() const { return domain_id_; }
 
+  /// With DDS Security: the remote participants this one has authenticated, and those whose
+  /// authentication failed (no credentials, or another CA's). Each is logged once.
+  int authenticatedParticipants() const;
+  int refusedParticipants() const;
+
  private:
   eprosima::fastdds::dds::DataWriter* createWriter(const std::string& topic_name,
                                                    eprosima::fastdds::dds::TypeSupport type,
@@ -58,7 +64,10 @@ class Participant {
   eprosima::fastdds::dds::Topic* topic(const std::string& name,
                                        eprosima::fastdds::dds::TypeSupport type);
 
+  class AuthenticationLog;
+
   int domain_id_ = 0;
+  std::unique_ptr<AuthenticationLog> authentication_log_;  ///< outlives participant_
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
