@@ -194,14 +194,6 @@ Participant::~Participant() {
   }
 }
 
-int Participant::authenticatedParticipants() const {
-  return authentication_log_ ? authentication_log_->authenticated() : 0;
-}
-
-int Participant::refusedParticipants() const {
-  return authentication_log_ ? authentication_log_->refused() : 0;
-}
-
 eprosima::fastdds::dds::Topic* Participant::topic(const std::string& name,
                                                   eprosima::fastdds::dds::TypeSupport type) {
   const auto found = topics_.find(name);

@@ -49,11 +49,6 @@ class Participant {
   eprosima::fastdds::dds::DomainParticipant* get() const { return participant_; }
   int domainId() const { return domain_id_; }
 
-  /// With DDS Security: the remote participants this one has authenticated, and those whose
-  /// authentication failed (no credentials, or another CA's). Each is logged once.
-  int authenticatedParticipants() const;
-  int refusedParticipants() const;
-
  private:
   eprosima::fastdds::dds::DataWriter* createWriter(const std::string& topic_name,
                                                    eprosima::fastdds::dds::TypeSupport type,
@@ -64,6 +59,8 @@ class Participant {
   eprosima::fastdds::dds::Topic* topic(const std::string& name,
                                        eprosima::fastdds::dds::TypeSupport type);
 
+  /// With DDS Security: logs each remote participant authenticated, and each whose
+  /// authentication failed (no credentials, or another CA's), once; counts both at the end.
   class AuthenticationLog;
 
   int domain_id_ = 0;
