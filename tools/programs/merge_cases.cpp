@@ -321,6 +321,15 @@ nlohmann::json toJson(const MethodTally& tally, bool details, bool with_fixed) {
   return json;
 }
 
+/// Each band's "success/cases", a column of 12 characters each.
+void printBandCells(const BandTally (&bands)[kBands]) {
+  for (const BandTally& band : bands) {
+    std::ostringstream cell;
+    cell << band.success << "/" << band.cases;
+    std::cout << std::setw(12) << cell.str();
+  }
+}
+
 /// "N (G gross)": false accepts and, of them, the gross ones; "N" when none is gross.
 std::string falseAcceptsText(std::pair<int, int> false_accepts) {
   const auto [all, gross] = false_accepts;
@@ -333,11 +342,7 @@ void printFixedRows(const std::vector<MethodTally>& tallies, long long fixed_mar
             << " disagreeing cells or more:\n";
   for (const MethodTally& tally : tallies) {
     std::cout << std::setw(10) << tally.name;
-    for (const BandTally& band : tally.fixed_bands) {
-      std::ostringstream cell;
-      cell << band.success << "/" << band.cases;
-      std::cout << std::setw(12) << cell.str();
-    }
+    printBandCells(tally.fixed_bands);
     std::cout << falseAcceptsText(falseAccepts(tally.fixed_bands)) << '\n';
   }
 }
@@ -349,11 +354,7 @@ void printTable(const std::vector<MethodTally>& tallies) {
             << "p90 ms\n";
   for (const MethodTally& tally : tallies) {
     std::cout << std::setw(10) << tally.name;
-    for (const BandTally& band : tally.bands) {
-      std::ostringstream cell;
-      cell << band.success << "/" << band.cases;
-      std::cout << std::setw(12) << cell.str();
-    }
+    printBandCells(tally.bands);
     std::ostringstream negatives;
     negatives << tally.negative_accepts << "/" << tally.negative_cases;
     std::cout << std::setw(18) << falseAcceptsText(falseAccepts(tally.bands)) << std::setw(18)
@@ -423,11 +424,7 @@ nlohmann::json toJson(const TruthTally& tally) {
 
 void printTruthCeiling(const TruthTally& tally) {
   std::cout << std::left << std::setw(10) << "truth";
-  for (const BandTally& band : tally.bands) {
-    std::ostringstream cell;
-    cell << band.success << "/" << band.cases;
-    std::cout << std::setw(12) << cell.str();
-  }
+  printBandCells(tally.bands);
   std::cout << "(the exact truth judged alone: accepted within 2 cells and 1 deg)\n";
 }
 

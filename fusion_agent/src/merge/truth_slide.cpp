@@ -9,17 +9,12 @@ namespace mrslam::fusion {
 
 namespace {
 
-// The overlap of a comparison: known cells of `from` landing on known cells of `to`.
-long long overlapOf(const Agreement& agreement) {
-  return agreement.agreement + agreement.disagreement;
-}
-
 // Whether `candidate` disagrees less than `best` (ties: the larger overlap; then the first).
 bool cleaner(const Agreement& candidate, const Agreement& best) {
   if (candidate.disagreement != best.disagreement) {
     return candidate.disagreement < best.disagreement;
   }
-  return overlapOf(candidate) > overlapOf(best);
+  return candidate.overlap() > best.overlap();
 }
 
 // One placement of `from`: the truth shifted by whole cells, and how it compares.
@@ -56,7 +51,7 @@ const Placement* cleanest(const std::vector<Placement>& placed, int least, int m
   for (const Placement& placement : placed) {
     const int distance = placement.shift.cwiseAbs().maxCoeff();
     if (distance < least || distance > most ||
-        static_cast<double>(overlapOf(placement.agreement)) < least_overlap) {
+        static_cast<double>(placement.agreement.overlap()) < least_overlap) {
       continue;
     }
     if (best == nullptr || cleaner(placement.agreement, best->agreement)) {
@@ -82,7 +77,7 @@ TruthSlide truthSlide(const GridMap& from, const GridMap& to, const GridTransfor
   slide.at_truth = truth->agreement;
   slide.truth_shift = truth->shift;
   const double least_overlap =
-      settings.min_overlap_share * static_cast<double>(overlapOf(slide.at_truth));
+      settings.min_overlap_share * static_cast<double>(slide.at_truth.overlap());
   if (const Placement* slid = cleanest(placed, settings.min_slide, settings.reach, least_overlap)) {
     slide.slid_found = true;
     slide.slid = slid->agreement;

@@ -171,6 +171,8 @@ struct Agreement {
   long long disagreement = 0;
   double entropy_change = 0.0;  ///< Σ over cells known in both of h(fused) - h(from) - h(to)
   long long similarity() const { return agreement - disagreement; }
+  /// Cells known in both maps.
+  long long overlap() const { return agreement + disagreement; }
 };
 
 /// Block 9: V = agr / (agr + dis), 0 without overlap.
