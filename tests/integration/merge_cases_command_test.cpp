@@ -424,6 +424,47 @@ TEST(MergeCasesCommandTest, DetailsCarryTheAcceptedTransformAndTheTruthAsImageAf
   EXPECT_EQ(negative.contains("affine"), negative["accepted"].get<bool>());
 }
 
+/// mrslam_merge_cases on case 5 of `--seed 1 --cases 12` (LongRun6) with `methods`.
+CommandRun variantCases(const std::string& methods, bool json, const char* name) {
+  std::vector<std::string> arguments = {"--maps",      sharedDataPath("maps"),
+                                        "--seed",      "1",
+                                        "--cases",     "12",
+                                        "--negatives", "0",
+                                        "--only",      "5",
+                                        "--methods",   methods};
+  if (json) {
+    arguments.insert(arguments.end(), {"--json", "--details"});
+  }
+  return runToEnd("tools/mrslam_merge_cases", arguments,
+                  (scratchFolder(name) / "cases.log").string(), 120.0);
+}
+
+TEST(MergeCasesCommandTest, ScoresChainVariantsSideBySide) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun6.txt");
+  // The feature baseline alone and refined by Carpin's psi, in one run.
+  const CommandRun run = variantCases("chain:feature,chain:feature+psi", true, "variants");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json methods = jsonLine(run.output)["methods"];
+  ASSERT_TRUE(methods.contains("chain:feature")) << methods.dump();
+  ASSERT_TRUE(methods.contains("chain:feature+psi")) << methods.dump();
+  const nlohmann::json& plain = methods["chain:feature"]["cases"][0];
+  const nlohmann::json& refined = methods["chain:feature+psi"]["cases"][0];
+  EXPECT_EQ(plain["method"], "feature");
+  EXPECT_EQ(refined["method"], "feature+psi");
+  EXPECT_GT(refined["verification"].get<double>(), plain["verification"].get<double>());
+  EXPECT_LT(refined["distance_error_cells"].get<double>(),
+            plain["distance_error_cells"].get<double>());
+  // The table's first column fits the longest name.
+  const CommandRun table = variantCases("feature,chain:feature+psi", false, "variant_table");
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_THAT(table.output, testing::StartsWith("method             20-40 %"));
+  EXPECT_THAT(table.output, testing::HasSubstr("\nchain:feature+psi  0/0"));
+  const CommandRun bad = variantCases("chain:psi+feature", false, "bad_variant");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_THAT(bad.output,
+              testing::HasSubstr("psi refines the accepted transform, so it comes last"));
+}
+
 TEST(MergeCasesCommandTest, ABadCaseIdIsRefusedWithItsText) {
   const auto folder = scratchFolder("bad");
   const CommandRun run = runCases({"--only", "3,x"}, folder);

@@ -331,7 +331,9 @@ int main(int argc, char** argv) {
                for (const std::string& name : mrslam::fusion::mergerNames()) {
                  names += (names.empty() ? "" : ", ") + name;
                }
-               return names;
+               return names +
+                      ", or chain:STEP+STEP[+psi] (a chain of those steps, refined by psi "
+                      "when it ends in psi)";
              }())
       ->capture_default_str();
   app.add_option("--config", options.config,

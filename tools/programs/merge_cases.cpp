@@ -2,6 +2,11 @@
 // each merge method on them, side by side in one run.
 //
 //   mrslam_merge_cases --methods seed,feature --cases 200 --negatives 50 --seed 1 [--json]
+//   mrslam_merge_cases --methods chain,chain:seed+psi,chain:seed+virtual,feature
+//
+// `chain` is the configured chain; `chain:STEP+STEP[+psi]` a chain of those steps with the chain's
+// other settings (its accepted transforms refined by Carpin's psi when it ends in `psi`), so that
+// chains are compared side by side in one run.
 //
 // Positive cases: two crops of one map (see merge_cases.hpp), spread evenly over the overlap
 // bands 20–40, 40–60 and 60–80 %. Success: accepted within 2 cells and 1° of the truth; a false
@@ -336,24 +341,36 @@ std::string falseAcceptsText(std::pair<int, int> false_accepts) {
   return std::to_string(all) + (gross > 0 ? " (" + std::to_string(gross) + " gross)" : "");
 }
 
+/// The width of the table's first column: 10, or two more than the longest method name (a chain
+/// variant such as "chain:exhaustive+seed+psi").
+int nameColumn(const std::vector<MethodTally>& tallies) {
+  std::size_t longest = 8;
+  for (const MethodTally& tally : tallies) {
+    longest = std::max(longest, tally.name.size());
+  }
+  return static_cast<int>(longest) + 2;
+}
+
 /// `--truth-slide`: each method's success per band on the cases whose maps fix the truth.
 void printFixedRows(const std::vector<MethodTally>& tallies, long long fixed_margin) {
   std::cout << "on the cases whose truth slid 3-8 cells costs " << fixed_margin
             << " disagreeing cells or more:\n";
   for (const MethodTally& tally : tallies) {
-    std::cout << std::setw(10) << tally.name;
+    std::cout << std::setw(nameColumn(tallies)) << tally.name;
     printBandCells(tally.fixed_bands);
     std::cout << falseAcceptsText(falseAccepts(tally.fixed_bands)) << '\n';
   }
 }
 
 void printTable(const std::vector<MethodTally>& tallies) {
-  std::cout << std::left << std::setw(10) << "method" << std::setw(12) << "20-40 %" << std::setw(12)
-            << "40-60 %" << std::setw(12) << "60-80 %" << std::setw(18) << "false acc (pos)"
-            << std::setw(18) << "false acc (neg)" << std::setw(12) << "median ms"
+  const int name_column = nameColumn(tallies);
+  std::cout << std::left << std::setw(name_column) << "method" << std::setw(12) << "20-40 %"
+            << std::setw(12) << "40-60 %" << std::setw(12) << "60-80 %" << std::setw(18)
+            << "false acc (pos)" << std::setw(18) << "false acc (neg)" << std::setw(12)
+            << "median ms"
             << "p90 ms\n";
   for (const MethodTally& tally : tallies) {
-    std::cout << std::setw(10) << tally.name;
+    std::cout << std::setw(name_column) << tally.name;
     printBandCells(tally.bands);
     std::ostringstream negatives;
     negatives << tally.negative_accepts << "/" << tally.negative_cases;
@@ -422,8 +439,8 @@ nlohmann::json toJson(const TruthTally& tally) {
   return {{"bands", bands}};
 }
 
-void printTruthCeiling(const TruthTally& tally) {
-  std::cout << std::left << std::setw(10) << "truth";
+void printTruthCeiling(const TruthTally& tally, int name_column) {
+  std::cout << std::left << std::setw(name_column) << "truth";
   printBandCells(tally.bands);
   std::cout << "(the exact truth judged alone: accepted within 2 cells and 1 deg)\n";
 }
@@ -534,7 +551,7 @@ int run(const CasesOptions& options) {
       printFixedRows(tallies, options.fixed_margin);
     }
     if (options.judge_truth) {
-      printTruthCeiling(truth_tally);
+      printTruthCeiling(truth_tally, nameColumn(tallies));
     }
   }
   return 0;
@@ -550,7 +567,9 @@ int main(int argc, char** argv) {
   }
   options.methods = all;
   CLI::App app{"Scores merge methods on known-answer cases cut from the shared maps"};
-  app.add_option("--methods", options.methods, "comma-separated merge methods")
+  app.add_option("--methods", options.methods,
+                 "comma-separated merge methods; chain:STEP+STEP[+psi] scores a chain of those "
+                 "steps (refined by psi when it ends in psi) beside the others")
       ->capture_default_str();
   app.add_option("--cases", options.settings.positive_cases, "positive cases")
       ->capture_default_str()

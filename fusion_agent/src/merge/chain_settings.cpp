@@ -69,7 +69,7 @@ std::vector<std::string> parseChainSteps(const std::string& steps) {
     if (name.empty()) {
       continue;
     }
-    if (name == "chain") {
+    if (name == "chain" || name.rfind("chain:", 0) == 0) {
       throw std::invalid_argument("a merge chain cannot hold a chain");
     }
     if (std::find(names.begin(), names.end(), name) != names.end()) {
