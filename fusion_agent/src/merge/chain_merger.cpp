@@ -197,7 +197,7 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
     if (result.accepted) {
       result.trials = trials;
       if (settings_.refine_psi) {
-        refineByPsi(from, to, settings_, result);
+        refineByPsi(from, to, settings_, judge_.settings().similarity, result);
       }
       refuseWhereSlidesCostLittle(from, to, settings_, judge_.settings().similarity, step->name(),
                                   name(), result);
@@ -525,20 +525,19 @@ void refuseWhereSlidesCostLittle(const GridMap& from, const GridMap& to,
 }
 
 void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,
-                 MergeResult& result) {
-  const SimilaritySettings similarity;
+                 const SimilaritySettings& classes, MergeResult& result) {
   RandomWalkSettings walk;
   walk.step_cells = 0.5;
   walk.step_rad = 0.25 * M_PI / 180.0;
   const RandomWalkResult refined =
-      randomWalk(prepareDissimilarity(from, similarity), prepareDissimilarity(to, similarity),
+      randomWalk(prepareDissimilarity(from, classes), prepareDissimilarity(to, classes),
                  result.T_to_from, walk);
   const Eigen::Vector2d centre(0.5 * from.geometry.width, 0.5 * from.geometry.height);
   if (cellsApartAt(refined.T_to_from, result.T_to_from, centre) > settings.max_refinement_cells ||
       turnBetween(refined.T_to_from, result.T_to_from) > settings.max_refinement_rad) {
     return;
   }
-  const ComparisonTables tables(similarity);
+  const ComparisonTables tables(classes);
   const CodeImage to_codes = codeImage(to, 2, tables);
   const double refined_v = verificationAt(from, to_codes, refined.T_to_from, tables);
   if (refined_v >= verificationAt(from, to_codes, result.T_to_from, tables)) {

@@ -240,9 +240,10 @@ void refuseWhereSlidesCostLittle(const GridMap& from, const GridMap& to,
                                  const std::string& step, const std::string& chain,
                                  MergeResult& result);
 
-/// Refines an accepted result by ψ (see ChainSettings); `method` gains "+psi" when it is kept.
+/// Refines an accepted result by ψ (see ChainSettings), cells classed by `classes` as the judge
+/// classes them; `method` gains "+psi" when it is kept.
 void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,
-                 MergeResult& result);
+                 const SimilaritySettings& classes, MergeResult& result);
 
 /// Reads a `chain:` section's own keys (every key optional, defaults above); throws ConfigError
 /// for a bad value. The steps (`steps`) are read by the merger registry.
