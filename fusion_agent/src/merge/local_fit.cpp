@@ -69,7 +69,7 @@ LocalFit fitNear(const GridMap& from, const GridMap& to, const GridTransform& st
   // Block 9 over every known cell, and the walls of each map against the other's.
   const Agreement full = compareAt(known_from, to_image, fit.T_to_from, tables, false);
   fit.verification = verificationIndex(full);
-  fit.overlap_cells = static_cast<std::size_t>(full.agreement + full.disagreement);
+  fit.overlap_cells = static_cast<std::size_t>(full.overlap());
   const CodeImage from_image = codeImage(from, reach + 2, tables);
   fit.structure = std::min(
       structureAgreement(occupiedOf(known_from, tables), to_image, fit.T_to_from, tables).index(),

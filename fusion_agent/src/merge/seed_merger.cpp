@@ -474,7 +474,7 @@ bool SeedMerger::samePlace(const GridTransform& a, const GridTransform& b,
 }
 
 bool SeedMerger::failsOnItsOwn(const seed::Refined& refined) const {
-  const long long overlap = refined.full.agreement + refined.full.disagreement;
+  const long long overlap = refined.full.overlap();
   return (overlap < settings_.min_overlap_cells && !smallOverlapDecisive(refined)) ||
          verificationIndex(refined.full) < settings_.min_verification_v || !wallsMeet(refined) ||
          entropyDisagrees(refined);
@@ -506,7 +506,7 @@ void SeedMerger::judge(const seed::Refined& refined, const seed::SearchInputs& i
 bool SeedMerger::smallOverlapDecisive(const seed::Refined& refined) const {
   // Every overlapping wall meets a wall both ways (or nearly every one where the cells fit
   // cleanly) and no other transform explains the overlap.
-  const long long overlap = refined.full.agreement + refined.full.disagreement;
+  const long long overlap = refined.full.overlap();
   if (settings_.small_overlap_cells <= 0 || overlap < settings_.small_overlap_cells ||
       refined.rival_share > 0.0) {
     return false;
@@ -574,7 +574,7 @@ SeedMerger::Refusal SeedMerger::refusal(const seed::Refined& refined) const {
 }
 
 SeedMerger::Refusal SeedMerger::cellsRefusal(const seed::Refined& refined) const {
-  const long long overlap = refined.full.agreement + refined.full.disagreement;
+  const long long overlap = refined.full.overlap();
   const double verification = verificationIndex(refined.full);
   if (overlap < settings_.min_overlap_cells && !smallOverlapDecisive(refined)) {
     return {MergeRefusal::kOverlap, "overlap of " + std::to_string(overlap) +

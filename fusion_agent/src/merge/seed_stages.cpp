@@ -290,7 +290,7 @@ void measureOverlap(const SearchInputs& inputs, const ComparisonTables& tables,
                     Candidate& candidate) {
   const Agreement all =
       compareAt(inputs.all_samples, inputs.to, candidate.T_to_from, tables, false);
-  candidate.overlap_cells = static_cast<double>(all.agreement + all.disagreement);
+  candidate.overlap_cells = static_cast<double>(all.overlap());
   candidate.disagreement_rate = 1.0 - verificationIndex(all);
 }
 

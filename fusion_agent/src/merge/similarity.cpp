@@ -226,7 +226,7 @@ CodeImage codeImage(const GridMap& map, int pad, const ComparisonTables& tables)
 }
 
 double verificationIndex(const Agreement& agreement) {
-  const long long overlap = agreement.agreement + agreement.disagreement;
+  const long long overlap = agreement.overlap();
   return overlap > 0 ? static_cast<double>(agreement.agreement) / static_cast<double>(overlap)
                      : 0.0;
 }
@@ -270,7 +270,7 @@ bool disagreementRateExceeds(const std::vector<CellSample>& samples, const CodeI
     }
     // The least the rate can end at: every sample left lands and agrees.
     const Agreement so_far = unpacked(packed, 0.0);
-    const double most_overlap = static_cast<double>(so_far.agreement + so_far.disagreement) +
+    const double most_overlap = static_cast<double>(so_far.overlap()) +
                                 static_cast<double>(samples.size() - end);
     if (end < samples.size() && static_cast<double>(so_far.disagreement) > rate * most_overlap) {
       return true;
