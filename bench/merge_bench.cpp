@@ -133,6 +133,14 @@ BENCHMARK_CAPTURE(BM_Merge400, exhaustive_turns_intel, "exhaustive", "carpin-int
 BENCHMARK_CAPTURE(BM_Merge400, chain_turns_intel, "chain", "carpin-intel.txt", kSuggestedTurns)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
+/// Chains by name: the seed pipeline alone as a chain, and refined by Carpin's ψ random walk (the
+/// difference is the refinement's cost).
+BENCHMARK_CAPTURE(BM_Merge400, chain_seed_intel, "chain:seed", "carpin-intel.txt", "")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(kCases);
+BENCHMARK_CAPTURE(BM_Merge400, chain_seed_psi_intel, "chain:seed+psi", "carpin-intel.txt", "")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(kCases);
 
 /// The exhaustive search alone (exhaustive_search.hpp, default settings) on the same cases, each
 /// searched three times in turn: summing every point of every node, and stopping a node's sums
