@@ -355,8 +355,9 @@ int nameColumn(const std::vector<MethodTally>& tallies) {
 void printFixedRows(const std::vector<MethodTally>& tallies, long long fixed_margin) {
   std::cout << "on the cases whose truth slid 3-8 cells costs " << fixed_margin
             << " disagreeing cells or more:\n";
+  const int name_column = nameColumn(tallies);
   for (const MethodTally& tally : tallies) {
-    std::cout << std::setw(nameColumn(tallies)) << tally.name;
+    std::cout << std::setw(name_column) << tally.name;
     printBandCells(tally.fixed_bands);
     std::cout << falseAcceptsText(falseAccepts(tally.fixed_bands)) << '\n';
   }
