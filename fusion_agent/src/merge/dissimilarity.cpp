@@ -15,11 +15,28 @@ bool isOfClass(std::int8_t value, PsiClass cell_class, const SimilaritySettings&
                                            : value <= settings.free_threshold;
 }
 
+/// Landings farther than this from a map's origin (cells) lie outside every map.
+constexpr double kFarOutside = 1e9;
+
+/// `value` rounded half away from zero, as std::lround rounds it, without its library call: the
+/// truncation and the remainder are exact for any |value| below kFarOutside.
+long roundHalfAway(double value) {
+  long whole = static_cast<long>(value);
+  const double rest = value - static_cast<double>(whole);
+  if (rest >= 0.5) {
+    ++whole;
+  } else if (rest <= -0.5) {
+    --whole;
+  }
+  return whole;
+}
+
 // d(m1, m2, c): the mean distance, in `to`'s distance map, of `cells` mapped by `T`; the sum and
 // count of the cells that land inside are added to `sum` and `count`. Each cell lands where
-// T.apply() puts it, the turn's cosine and sine taken once for all cells.
+// T.apply() puts it, the turn's cosine and sine taken once for all cells. The sum of whole
+// distances is kept as an integer: a double would hold every partial sum exactly as well.
 void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMap& to,
-                     const GridTransform& T, double& sum, long long& count) {
+                     const GridTransform& T, long long& sum, long long& count) {
   const double c = std::cos(T.theta_rad);
   const double s = std::sin(T.theta_rad);
   const double tx = T.t_cells.x();
@@ -27,12 +44,17 @@ void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMa
   for (const Eigen::Vector2i& cell : cells) {
     const double cx = cell.x();
     const double cy = cell.y();
-    const int x = static_cast<int>(std::lround((c * cx - s * cy) + tx));
-    const int y = static_cast<int>(std::lround((s * cx + c * cy) + ty));
+    const double landed_x = (c * cx - s * cy) + tx;
+    const double landed_y = (s * cx + c * cy) + ty;
+    if (!(std::abs(landed_x) < kFarOutside && std::abs(landed_y) < kFarOutside)) {
+      continue;  // far outside (or not a number)
+    }
+    const long x = roundHalfAway(landed_x);
+    const long y = roundHalfAway(landed_y);
     if (x < 0 || y < 0 || x >= to.width || y >= to.height) {
       continue;
     }
-    const std::int32_t distance = to.at(x, y);
+    const std::int32_t distance = to.at(static_cast<int>(x), static_cast<int>(y));
     if (distance < DistanceMap::kFar) {
       sum += distance;
       ++count;
@@ -42,11 +64,11 @@ void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMa
 
 double meanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMap& to,
                     const GridTransform& T, bool& landed) {
-  double sum = 0.0;
+  long long sum = 0;
   long long count = 0;
   addMeanDistance(cells, to, T, sum, count);
   landed = landed || count > 0;
-  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+  return count > 0 ? static_cast<double>(sum) / static_cast<double>(count) : 0.0;
 }
 
 }  // namespace
