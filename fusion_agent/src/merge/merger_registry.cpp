@@ -7,6 +7,7 @@
 #include "mrslam/fusion/merge/chain_merger.hpp"
 #include "mrslam/fusion/merge/exhaustive_merger.hpp"
 #include "mrslam/fusion/merge/feature_merger.hpp"
+#include "mrslam/fusion/merge/psi_walk_merger.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
 #include "mrslam/fusion/merge/virtual_robot.hpp"
 
@@ -14,7 +15,7 @@ namespace mrslam::fusion {
 
 std::vector<std::string> mergerNames() {
   // Best first, as measured by `mrslam merge-cases` (docs/merge_tuning.md).
-  return {"chain", "seed", "exhaustive", "virtual", "feature"};
+  return {"chain", "seed", "exhaustive", "psi_walk", "virtual", "feature"};
 }
 
 std::string defaultMergerName() {
@@ -101,6 +102,9 @@ std::unique_ptr<MapMerger> makeJudgedMerger(const std::string& name, const Confi
   if (name == "exhaustive") {
     return std::make_unique<ExhaustiveMerger>(loadExhaustiveMergerSettings(settings), judge);
   }
+  if (name == "psi_walk") {
+    return std::make_unique<PsiWalkMerger>(loadPsiWalkSettings(settings), judge);
+  }
   return nullptr;
 }
 
@@ -113,7 +117,8 @@ std::unique_ptr<MapMerger> makeMergerFrom(const std::string& name, const Config&
   if (const std::optional<ChainVariant> variant = chainVariantOf(name)) {
     return makeChain(methods.section("chain"), &methods, variant);
   }
-  if (name == "virtual" || name == "exhaustive") {  // judged with the `seed:` section's settings
+  if (name == "virtual" || name == "exhaustive" ||
+      name == "psi_walk") {  // judged with the `seed:` section's settings
     return makeJudgedMerger(name, methods.section(name),
                             loadSeedMergerSettings(methods.section("seed")));
   }

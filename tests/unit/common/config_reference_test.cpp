@@ -184,7 +184,7 @@ FileKind kindOf(const std::string& path) {
 }
 
 // Small files that turn on what the project's configs leave off: every default of the optional
-// sections, every device, every list item, both mergers, every team entry.
+// sections, every device, every list item, every merger, every team entry.
 const std::map<FileKind, std::map<std::string, std::string>> kExtraFiles = {
     {FileKind::kRobot,
      {
@@ -216,6 +216,7 @@ const std::map<FileKind, std::map<std::string, std::string>> kExtraFiles = {
           "  feature: {}\n"
           "  virtual: {}\n"
           "  exhaustive: {}\n"
+          "  psi_walk: {}\n"
           "  chain: {}\n"},
      }},
     {FileKind::kTeam,
