@@ -15,22 +15,6 @@ bool isOfClass(std::int8_t value, PsiClass cell_class, const SimilaritySettings&
                                            : value <= settings.free_threshold;
 }
 
-/// Landings farther than this from a map's origin (cells) lie outside every map.
-constexpr double kFarOutside = 1e9;
-
-/// `value` rounded half away from zero, as std::lround rounds it, without its library call: the
-/// truncation and the remainder are exact for any |value| below kFarOutside.
-long roundHalfAway(double value) {
-  long whole = static_cast<long>(value);
-  const double rest = value - static_cast<double>(whole);
-  if (rest >= 0.5) {
-    ++whole;
-  } else if (rest <= -0.5) {
-    --whole;
-  }
-  return whole;
-}
-
 // d(m1, m2, c): the mean distance, in `to`'s distance map, of `cells` mapped by `T`; the sum and
 // count of the cells that land inside are added to `sum` and `count`. Each cell lands where
 // T.apply() puts it, the turn's cosine and sine taken once for all cells. The sum of whole
@@ -44,13 +28,8 @@ void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMa
   for (const Eigen::Vector2i& cell : cells) {
     const double cx = cell.x();
     const double cy = cell.y();
-    const double landed_x = (c * cx - s * cy) + tx;
-    const double landed_y = (s * cx + c * cy) + ty;
-    if (!(std::abs(landed_x) < kFarOutside && std::abs(landed_y) < kFarOutside)) {
-      continue;  // far outside (or not a number)
-    }
-    const long x = roundHalfAway(landed_x);
-    const long y = roundHalfAway(landed_y);
+    const long x = std::lround((c * cx - s * cy) + tx);
+    const long y = std::lround((s * cx + c * cy) + ty);
     if (x < 0 || y < 0 || x >= to.width || y >= to.height) {
       continue;
     }
