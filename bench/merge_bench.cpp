@@ -141,6 +141,10 @@ BENCHMARK_CAPTURE(BM_Merge400, chain_seed_intel, "chain:seed", "carpin-intel.txt
 BENCHMARK_CAPTURE(BM_Merge400, chain_seed_psi_intel, "chain:seed+psi", "carpin-intel.txt", "")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
+/// Carpin's psi random walk as a merger of its own (walks from the exhaustive search's hypotheses).
+BENCHMARK_CAPTURE(BM_Merge400, psi_walk_intel, "psi_walk", "carpin-intel.txt", "")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(kCases);
 
 /// The exhaustive search alone (exhaustive_search.hpp, default settings) on the same cases, each
 /// searched three times in turn: summing every point of every node, and stopping a node's sums
