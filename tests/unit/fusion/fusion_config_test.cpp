@@ -113,9 +113,13 @@ TEST(FusionConfigTest, TheMergeMethodMakesItsMergerWithItsSettings) {
   const FusionConfig feature = loadFusionConfig(writeConfig("merge:\n  method: feature\n"));
   ASSERT_TRUE(feature.make_merger);
   EXPECT_EQ(feature.make_merger()->name(), "feature");
+  const FusionConfig walk =
+      loadFusionConfig(writeConfig("merge:\n  method: psi_walk\n  psi_walk:\n    starts: 2\n"));
+  ASSERT_TRUE(walk.make_merger);
+  EXPECT_EQ(walk.make_merger()->name(), "psi_walk");
   EXPECT_THAT(loadError("merge:\n  method: carpin\n"),
               HasSubstr("fusion.yaml:2: merge.method: 'carpin' is not one of: chain, seed, "
-                        "exhaustive, virtual, feature, none"));
+                        "exhaustive, psi_walk, virtual, feature, none"));
   EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    canny_low: -1\n"),
               HasSubstr("fusion.yaml:4: merge.seed.canny_low: -1 is out of range"));
   EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    bogus: 1\n"),
