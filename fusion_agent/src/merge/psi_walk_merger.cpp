@@ -4,8 +4,6 @@
 #include <cmath>
 #include <utility>
 
-#include "mrslam/fusion/merge/exhaustive_merger.hpp"
-
 namespace mrslam::fusion {
 
 namespace {
@@ -58,17 +56,18 @@ DissimilarityMap sampledDissimilarity(const GridMap& map, const SimilaritySettin
 }
 
 PsiWalkMerger::PsiWalkMerger(PsiWalkSettings settings, const SeedMergerSettings& judge)
-    : settings_(std::move(settings)), judge_(judge), classes_(judge.similarity) {}
+    : settings_(std::move(settings)), judge_(judge) {}
 
 std::vector<GridTransform> PsiWalkMerger::walkedHypotheses(const GridMap& from,
                                                            const GridMap& to) const {
+  const SimilaritySettings& classes = judge_.settings().similarity;
   const std::vector<ExhaustiveHypothesis> starts =
-      exhaustiveSearch(from, to, settings_.search, classes_);
+      exhaustiveSearch(from, to, settings_.search, classes);
   if (starts.empty()) {
     return {};
   }
-  const DissimilarityMap psi_from = sampledDissimilarity(from, classes_, settings_.max_cells);
-  const DissimilarityMap psi_to = sampledDissimilarity(to, classes_, settings_.max_cells);
+  const DissimilarityMap psi_from = sampledDissimilarity(from, classes, settings_.max_cells);
+  const DissimilarityMap psi_to = sampledDissimilarity(to, classes, settings_.max_cells);
   std::vector<std::pair<double, GridTransform>> ends;
   const std::size_t count = std::min(starts.size(), static_cast<std::size_t>(settings_.starts));
   for (std::size_t i = 0; i < count; ++i) {

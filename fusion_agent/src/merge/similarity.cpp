@@ -270,8 +270,8 @@ bool disagreementRateExceeds(const std::vector<CellSample>& samples, const CodeI
     }
     // The least the rate can end at: every sample left lands and agrees.
     const Agreement so_far = unpacked(packed, 0.0);
-    const double most_overlap = static_cast<double>(so_far.overlap()) +
-                                static_cast<double>(samples.size() - end);
+    const double most_overlap =
+        static_cast<double>(so_far.overlap()) + static_cast<double>(samples.size() - end);
     if (end < samples.size() && static_cast<double>(so_far.disagreement) > rate * most_overlap) {
       return true;
     }

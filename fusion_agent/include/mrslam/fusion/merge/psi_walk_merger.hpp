@@ -51,8 +51,7 @@ class PsiWalkMerger : public MapMerger {
 
  private:
   PsiWalkSettings settings_;
-  SeedMerger judge_;
-  SimilaritySettings classes_;
+  SeedMerger judge_;  ///< judges the walks' ends; its similarity settings class ψ's cells
 };
 
 }  // namespace mrslam::fusion
