@@ -16,11 +16,14 @@ bool isOfClass(std::int8_t value, PsiClass cell_class, const SimilaritySettings&
 }
 
 // d(m1, m2, c): the mean distance, in `to`'s distance map, of `cells` mapped by `T`; the sum and
-// count of the cells that land inside are added to `sum` and `count`. Each cell lands where
-// T.apply() puts it, the turn's cosine and sine taken once for all cells. The sum of whole
-// distances is kept as an integer: a double would hold every partial sum exactly as well.
+// count of the cells that land inside (and, with kOnKnown, on a cell that `known` marks) are added
+// to `sum` and `count`. Each cell lands where T.apply() puts it, the turn's cosine and sine taken
+// once for all cells. The sum of whole distances is kept as an integer: a double would hold every
+// partial sum exactly as well.
+template <bool kOnKnown>
 void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMap& to,
-                     const GridTransform& T, long long& sum, long long& count) {
+                     const std::vector<std::uint8_t>& known, const GridTransform& T,
+                     long long& sum, long long& count) {
   const double c = std::cos(T.theta_rad);
   const double s = std::sin(T.theta_rad);
   const double tx = T.t_cells.x();
@@ -33,6 +36,10 @@ void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMa
     if (x < 0 || y < 0 || x >= to.width || y >= to.height) {
       continue;
     }
+    if (kOnKnown && known[static_cast<std::size_t>(y) * static_cast<std::size_t>(to.width) +
+                          static_cast<std::size_t>(x)] == 0) {
+      continue;
+    }
     const std::int32_t distance = to.at(static_cast<int>(x), static_cast<int>(y));
     if (distance < DistanceMap::kFar) {
       sum += distance;
@@ -41,11 +48,12 @@ void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMa
   }
 }
 
+template <bool kOnKnown>
 double meanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMap& to,
-                    const GridTransform& T, bool& landed) {
+                    const std::vector<std::uint8_t>& known, const GridTransform& T, bool& landed) {
   long long sum = 0;
   long long count = 0;
-  addMeanDistance(cells, to, T, sum, count);
+  addMeanDistance<kOnKnown>(cells, to, known, T, sum, count);
   landed = landed || count > 0;
   return count > 0 ? static_cast<double>(sum) / static_cast<double>(count) : 0.0;
 }
@@ -96,8 +104,10 @@ DissimilarityMap prepareDissimilarity(const GridMap& map, const SimilaritySettin
   DissimilarityMap prepared;
   prepared.occupied = distanceMap(map, PsiClass::kOccupied, settings);
   prepared.free = distanceMap(map, PsiClass::kFree, settings);
+  prepared.known.reserve(map.cells.size());
   for (int y = 0; y < map.geometry.height; ++y) {
     for (int x = 0; x < map.geometry.width; ++x) {
+      prepared.known.push_back(map.at(x, y) >= 0 ? 1 : 0);
       if (isOfClass(map.at(x, y), PsiClass::kOccupied, settings)) {
         prepared.occupied_cells.emplace_back(x, y);
       } else if (isOfClass(map.at(x, y), PsiClass::kFree, settings)) {
@@ -108,15 +118,31 @@ DissimilarityMap prepareDissimilarity(const GridMap& map, const SimilaritySettin
   return prepared;
 }
 
-double dissimilarity(const DissimilarityMap& from, const DissimilarityMap& to,
-                     const GridTransform& T_to_from) {
+namespace {
+
+template <bool kOnKnown>
+double psiOf(const DissimilarityMap& from, const DissimilarityMap& to,
+             const GridTransform& T_to_from) {
   const GridTransform T_from_to = T_to_from.inverse();
   bool landed = false;
-  const double psi = meanDistance(from.occupied_cells, to.occupied, T_to_from, landed) +
-                     meanDistance(to.occupied_cells, from.occupied, T_from_to, landed) +
-                     meanDistance(from.free_cells, to.free, T_to_from, landed) +
-                     meanDistance(to.free_cells, from.free, T_from_to, landed);
+  const double psi =
+      meanDistance<kOnKnown>(from.occupied_cells, to.occupied, to.known, T_to_from, landed) +
+      meanDistance<kOnKnown>(to.occupied_cells, from.occupied, from.known, T_from_to, landed) +
+      meanDistance<kOnKnown>(from.free_cells, to.free, to.known, T_to_from, landed) +
+      meanDistance<kOnKnown>(to.free_cells, from.free, from.known, T_from_to, landed);
   return landed ? psi : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+double dissimilarity(const DissimilarityMap& from, const DissimilarityMap& to,
+                     const GridTransform& T_to_from) {
+  return psiOf<false>(from, to, T_to_from);
+}
+
+double overlapDissimilarity(const DissimilarityMap& from, const DissimilarityMap& to,
+                            const GridTransform& T_to_from) {
+  return psiOf<true>(from, to, T_to_from);
 }
 
 }  // namespace mrslam::fusion

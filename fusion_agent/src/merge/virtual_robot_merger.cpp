@@ -3,6 +3,9 @@
 
 #include "mrslam/fusion/merge/virtual_robot.hpp"
 
+#include "mrslam/fusion/merge/dissimilarity.hpp"
+#include "mrslam/fusion/merge/reason_text.hpp"
+
 namespace mrslam::fusion {
 
 VirtualRobotSettings loadVirtualRobotSettings(const Config& config) {
@@ -22,6 +25,7 @@ VirtualRobotSettings loadVirtualRobotSettings(const Config& config) {
   s.cluster_angle_rad = config.getDouble("cluster_angle_rad", s.cluster_angle_rad, {0.01, M_PI});
   s.hypotheses_per_walk =
       static_cast<int>(config.getInt("hypotheses_per_walk", s.hypotheses_per_walk, {1, 100}));
+  s.max_overlap_psi = config.getDouble("max_overlap_psi", s.max_overlap_psi, {0.0, 1000.0});
   s.seed = static_cast<std::uint64_t>(
       config.getInt("seed", static_cast<long long>(s.seed), {0.0, 9007199254740992.0}));
   return s;
@@ -31,7 +35,24 @@ MergeResult VirtualRobotMerger::merge(const GridMap& from, const GridMap& to) {
   MergeResult result = judgeFoundHypotheses(judge_, from, to, hypotheses(from, to), name(),
                                             "virtual robot (skeleton walks)");
   judge_.alignOnInputs(from, to, result);
+  if (result.accepted) {
+    refuseDissimilar(from, to, result);
+  }
   return result;
+}
+
+void VirtualRobotMerger::refuseDissimilar(const GridMap& from, const GridMap& to,
+                                          MergeResult& result) const {
+  const SimilaritySettings& classes = judge_.settings().similarity;
+  const double psi = overlapDissimilarity(prepareDissimilarity(from, classes),
+                                          prepareDissimilarity(to, classes), result.T_to_from);
+  if (psi <= settings_.max_overlap_psi) {
+    return;
+  }
+  result.accepted = false;
+  result.refusal = MergeRefusal::kDissimilarity;
+  result.reason = "virtual robot (skeleton walks): ψ over the overlap " + reasonFigure(psi) +
+                  " cells is above " + reasonFigure(settings_.max_overlap_psi);
 }
 
 }  // namespace mrslam::fusion

@@ -47,9 +47,11 @@ std::int32_t bruteDistance(const GridMap& map, int x, int y, PsiClass cell_class
   return best;
 }
 
-// d(m1, m2, c) by brute force: every cell of class c of m1, mapped and rounded, inside m2.
+// d(m1, m2, c) by brute force: every cell of class c of m1, mapped and rounded, inside m2 (and,
+// with `on_known`, on a known cell of m2).
 void bruteMean(const GridMap& m1, const GridMap& m2, const GridTransform& T, PsiClass c,
-               const SimilaritySettings& settings, double& psi, bool& landed) {
+               const SimilaritySettings& settings, double& psi, bool& landed,
+               bool on_known = false) {
   double sum = 0.0;
   long long count = 0;
   for (int y = 0; y < m1.geometry.height; ++y) {
@@ -60,7 +62,7 @@ void bruteMean(const GridMap& m1, const GridMap& m2, const GridTransform& T, Psi
       const Eigen::Vector2d p = T.apply(Eigen::Vector2d(x, y));
       const int u = static_cast<int>(std::lround(p.x()));
       const int v = static_cast<int>(std::lround(p.y()));
-      if (!m2.geometry.contains(u, v)) {
+      if (!m2.geometry.contains(u, v) || (on_known && m2.at(u, v) == GridMap::kUnknown)) {
         continue;
       }
       const std::int32_t d = bruteDistance(m2, u, v, c, settings);
@@ -113,6 +115,76 @@ TEST(MergeDissimilarityTest, PsiEqualsTheBruteForceReference) {
     ASSERT_TRUE(landed);
     EXPECT_NEAR(psi, expected, 1e-9) << "trial " << trial;
   }
+}
+
+TEST(MergeDissimilarityTest, PsiOverTheOverlapEqualsTheBruteForceReference) {
+  std::mt19937 random(6);
+  const SimilaritySettings settings;
+  for (int trial = 0; trial < 20; ++trial) {
+    const GridMap from = randomGrid(12, 10, random);
+    const GridMap to = randomGrid(14, 9, random);
+    GridTransform T;
+    T.theta_rad = std::uniform_real_distribution<double>(-0.5, 0.5)(random);
+    T.t_cells = Eigen::Vector2d(std::uniform_real_distribution<double>(-3.0, 3.0)(random),
+                                std::uniform_real_distribution<double>(-3.0, 3.0)(random));
+    double expected = 0.0;
+    bool landed = false;
+    for (const PsiClass c : {PsiClass::kOccupied, PsiClass::kFree}) {
+      bruteMean(from, to, T, c, settings, expected, landed, true);
+      bruteMean(to, from, T.inverse(), c, settings, expected, landed, true);
+    }
+    const DissimilarityMap prepared_from = prepareDissimilarity(from, settings);
+    const DissimilarityMap prepared_to = prepareDissimilarity(to, settings);
+    ASSERT_TRUE(landed);
+    EXPECT_NEAR(overlapDissimilarity(prepared_from, prepared_to, T), expected, 1e-9)
+        << "trial " << trial;
+    EXPECT_NE(overlapDissimilarity(prepared_from, prepared_to, T),
+              dissimilarity(prepared_from, prepared_to, T))
+        << "trial " << trial << ": a third of the cells are unknown";
+  }
+}
+
+// Two crops of one room that agree where both are known: ψ over the overlap is 0 however much of
+// either lies outside the other, while plain ψ counts the walls that only one of them saw.
+TEST(MergeDissimilarityTest, PsiOverTheOverlapLeavesOutWhatTheOtherMapDidNotSee) {
+  GridGeometry geometry;
+  geometry.resolution_m = 0.05;
+  geometry.width = 30;
+  geometry.height = 20;
+  GridMap left(geometry, 0);
+  for (int x = 0; x < 30; ++x) {  // a corridor: walls on rows 0 and 19, a post at column 25
+    left.at(x, 0) = 100;
+    left.at(x, 19) = 100;
+  }
+  for (int y = 5; y < 15; ++y) {
+    left.at(25, y) = 100;
+  }
+  GridMap right = left;
+  for (int y = 0; y < 20; ++y) {
+    for (int x = 20; x < 30; ++x) {
+      left.at(x, y) = GridMap::kUnknown;  // `left` never saw the post
+    }
+    for (int x = 0; x < 10; ++x) {
+      right.at(x, y) = GridMap::kUnknown;
+    }
+  }
+  const SimilaritySettings settings;
+  const DissimilarityMap a = prepareDissimilarity(left, settings);
+  const DissimilarityMap b = prepareDissimilarity(right, settings);
+  EXPECT_DOUBLE_EQ(overlapDissimilarity(a, b, GridTransform{}), 0.0);
+  EXPECT_GT(dissimilarity(a, b, GridTransform{}), 0.0);
+  GridTransform slid;  // the same crops one cell apart across the corridor
+  slid.t_cells = Eigen::Vector2d(0.0, 1.0);
+  EXPECT_GT(overlapDissimilarity(a, b, slid), 0.0);
+  GridMap far_left = left;  // known on columns 0-9 only, where `right` is unknown
+  for (int y = 0; y < 20; ++y) {
+    for (int x = 10; x < 20; ++x) {
+      far_left.at(x, y) = GridMap::kUnknown;
+    }
+  }
+  const DissimilarityMap c = prepareDissimilarity(far_left, settings);
+  EXPECT_TRUE(std::isinf(overlapDissimilarity(c, b, GridTransform{})));
+  EXPECT_TRUE(std::isfinite(dissimilarity(c, b, GridTransform{})));
 }
 
 TEST(MergeDissimilarityTest, AMapAgreesWithItselfAndNotWithAShiftedSelf) {

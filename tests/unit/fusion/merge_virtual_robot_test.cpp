@@ -3,8 +3,10 @@
 
 #include "mrslam/fusion/merge/virtual_robot.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "merge_crop_pairs.hpp"
 #include "merge_test_maps.hpp"
 #include "test_data.hpp"
 
@@ -98,6 +100,60 @@ TEST(MergeVirtualRobotTest, RefusesMapsOfDifferentBuildings) {
   const MergeResult result = merger.merge(a.from, b.to);
   EXPECT_FALSE(result.accepted) << "V " << result.verification;
   EXPECT_FALSE(result.reason.empty());
+}
+
+// Two wrong merges the virtual robot's hypotheses passed the seed acceptance with, before ψ was
+// checked: case 118 of `mrslam_merge_cases --seed 8` (ACES at 40 % overlap, accepted turned 180°
+// at V 0.975) and case 10 of `--seed 42` (Carpin's robot 0 at 50 %, accepted turned 92° at V
+// 0.981). Their ψ over the overlap is 1.15 and 2.06 cells; 758 right merges of the virtual robot
+// on seeds 1-8 lie at 0.93 cells or less.
+const merge_test::CropPair kAcesTurnedCase{
+    "freiburg-aces.pgm",
+    118,
+    {{357, 504}, 225, -2.214505476047608, {8, 23}, {12, 15}},
+    {{490, 358}, 285, -2.1951161543931055, {17, 20}, {12, 25}}};
+const merge_test::CropPair kRobot0TurnedCase{
+    "carpin-robot0_cast.txt",
+    10,
+    {{335, -40}, 202, 2.9243160301177262, {23, 26}, {4, 1}},
+    {{318, 132}, 304, -1.955910906785824, {4, 17}, {16, 9}}};
+
+TEST(MergeVirtualRobotTest, PsiOverTheOverlapRefusesWrongMergesTheAcceptancePassed) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
+  for (const merge_test::CropPair& pair : {kAcesTurnedCase, kRobot0TurnedCase}) {
+    const MergeCase merge_case = merge_test::cut(pair);
+    VirtualRobotSettings unchecked;
+    unchecked.max_overlap_psi = 1000.0;
+    const MergeResult passed = VirtualRobotMerger(unchecked).merge(merge_case.a, merge_case.b);
+    ASSERT_TRUE(passed.accepted) << pair.map << ": " << passed.reason;
+    EXPECT_FALSE(isCorrect(caseError(merge_case, passed.T_to_from))) << pair.map;
+    const MergeResult checked = VirtualRobotMerger().merge(merge_case.a, merge_case.b);
+    EXPECT_FALSE(checked.accepted) << pair.map;
+    EXPECT_EQ(checked.refusal, MergeRefusal::kDissimilarity) << pair.map;
+    EXPECT_THAT(checked.reason, testing::HasSubstr("ψ over the overlap")) << pair.map;
+    EXPECT_THAT(checked.reason, testing::HasSubstr("is above 1")) << pair.map;
+    EXPECT_EQ(checked.method, "virtual");
+  }
+}
+
+TEST(MergeVirtualRobotTest, SettingsAreReadFromTheVirtualSectionWithinTheirRanges) {
+  const Config section = Config::loadString(
+      "virtual: {walks: 3, particles: 500, max_overlap_psi: 0.5, seed: 4}\n", "merge.yaml");
+  const VirtualRobotSettings read = loadVirtualRobotSettings(section.section("virtual"));
+  EXPECT_EQ(read.walks, 3);
+  EXPECT_EQ(read.particles, 500);
+  EXPECT_DOUBLE_EQ(read.max_overlap_psi, 0.5);
+  EXPECT_EQ(read.seed, 4u);
+  EXPECT_DOUBLE_EQ(loadVirtualRobotSettings(Config::loadString("", "m.yaml")).max_overlap_psi,
+                   VirtualRobotSettings{}.max_overlap_psi);
+  EXPECT_THROW(
+      loadVirtualRobotSettings(
+          Config::loadString("virtual: {max_overlap_psi: -1}\n", "m.yaml").section("virtual")),
+      ConfigError);
+  EXPECT_THROW(loadVirtualRobotSettings(
+                   Config::loadString("virtual: {particles: 5}\n", "m.yaml").section("virtual")),
+               ConfigError);
 }
 
 }  // namespace

@@ -13,6 +13,11 @@
 // Here m1 = `from` mapped into m2 = `to` by T_to_from (and m2 back by its inverse); cells that
 // land outside the other map are left out of both the sum and the count. ψ = 0 for maps that
 // agree cell for cell; it grows with every cell that lands away from cells of its class.
+//
+// ψ over the overlap (overlapDissimilarity) counts only the cells that land on a known cell of the
+// other map. Plain ψ also counts the cells that land on the other map's unknown space, whose
+// distances measure how much of the maps does not overlap, not whether the overlap agrees: two
+// right merges of crops at 20 % and 80 % overlap differ in ψ by tens of cells.
 
 #include <cstdint>
 #include <limits>
@@ -50,6 +55,7 @@ struct DissimilarityMap {
   DistanceMap free;
   std::vector<Eigen::Vector2i> occupied_cells;
   std::vector<Eigen::Vector2i> free_cells;
+  std::vector<std::uint8_t> known;  ///< 1 where the map's cell is known, row by row
 };
 
 DissimilarityMap prepareDissimilarity(const GridMap& map, const SimilaritySettings& settings);
@@ -57,5 +63,10 @@ DissimilarityMap prepareDissimilarity(const GridMap& map, const SimilaritySettin
 /// ψ of `from` mapped by T_to_from onto `to` (eq. 13); infinity when no cell lands inside.
 double dissimilarity(const DissimilarityMap& from, const DissimilarityMap& to,
                      const GridTransform& T_to_from);
+
+/// ψ over the overlap: as dissimilarity(), but a cell counts only where it lands on a known cell of
+/// the other map; infinity when no cell does.
+double overlapDissimilarity(const DissimilarityMap& from, const DissimilarityMap& to,
+                            const GridTransform& T_to_from);
 
 }  // namespace mrslam::fusion

@@ -86,6 +86,7 @@ enum class MergeRefusal {
   kTranslation,   ///< the overlap does not fix the translation (a slide scores almost as well)
   kRival,         ///< another transform elsewhere explains the overlap almost as well
   kRotation,      ///< the overlap's walls meet as well turned (the wall alignment's turn check)
+  kDissimilarity,  ///< Carpin's ψ over the overlap above its bar (the virtual robot's check)
 };
 
 /// What a merge found, or why it refused.

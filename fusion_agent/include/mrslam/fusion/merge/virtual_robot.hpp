@@ -7,7 +7,8 @@
 // in `to` (T1) while its pose in `from` (T2) is known, so each is a hypothesis
 // T_to_from = T1 · T2⁻¹. The hypotheses are judged by the seed pipeline's own acceptance
 // (SeedMerger::judgeHypotheses: ±δ placement, ranking, rival check and every refusal rule), with
-// the seed merger's settings; an accepted one is aligned last, as the seed merger's are.
+// the seed merger's settings; an accepted one is aligned last, as the seed merger's are. Its ψ
+// over the overlap (dissimilarity.hpp) is checked then: V and ψ both verify what it found.
 
 #include <cstdint>
 #include <vector>
@@ -34,6 +35,7 @@ struct VirtualRobotSettings {
   double cluster_radius_cells = 5.0;  ///< particles this close form one cluster
   double cluster_angle_rad = 0.15;    ///< ... and turned by less than this
   int hypotheses_per_walk = 3;        ///< largest clusters taken from each walk
+  double max_overlap_psi = 1.0;       ///< ψ over the overlap (cells) above which it refuses
   std::uint64_t seed = 1;             ///< seed of every random draw
 };
 
@@ -72,6 +74,9 @@ class VirtualRobotMerger : public MapMerger {
   std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to) const;
 
  private:
+  /// Refuses an accepted `result` whose ψ over the overlap is above max_overlap_psi.
+  void refuseDissimilar(const GridMap& from, const GridMap& to, MergeResult& result) const;
+
   VirtualRobotSettings settings_;
   SeedMerger judge_;  ///< the seed pipeline's acceptance, for the hypotheses
 };
