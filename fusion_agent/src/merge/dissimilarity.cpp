@@ -22,8 +22,8 @@ bool isOfClass(std::int8_t value, PsiClass cell_class, const SimilaritySettings&
 // partial sum exactly as well.
 template <bool kOnKnown>
 void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMap& to,
-                     const std::vector<std::uint8_t>& known, const GridTransform& T,
-                     long long& sum, long long& count) {
+                     const std::vector<std::uint8_t>& known, const GridTransform& T, long long& sum,
+                     long long& count) {
   const double c = std::cos(T.theta_rad);
   const double s = std::sin(T.theta_rad);
   const double tx = T.t_cells.x();

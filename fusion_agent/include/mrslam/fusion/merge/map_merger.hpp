@@ -79,13 +79,13 @@ int blockCellsForSize(const GridMap& from, const GridMap& to, int block_cells, i
 /// exhaustive and virtual-robot mergers share); kUnspecified when accepted or refused elsewhere.
 enum class MergeRefusal {
   kUnspecified,
-  kOverlap,       ///< too few known cells in the overlap
-  kVerification,  ///< V below its bar
-  kStructure,     ///< overlapping walls do not meet walls
-  kEntropy,       ///< the entropy minimum lies away from the best similarity
-  kTranslation,   ///< the overlap does not fix the translation (a slide scores almost as well)
-  kRival,         ///< another transform elsewhere explains the overlap almost as well
-  kRotation,      ///< the overlap's walls meet as well turned (the wall alignment's turn check)
+  kOverlap,        ///< too few known cells in the overlap
+  kVerification,   ///< V below its bar
+  kStructure,      ///< overlapping walls do not meet walls
+  kEntropy,        ///< the entropy minimum lies away from the best similarity
+  kTranslation,    ///< the overlap does not fix the translation (a slide scores almost as well)
+  kRival,          ///< another transform elsewhere explains the overlap almost as well
+  kRotation,       ///< the overlap's walls meet as well turned (the wall alignment's turn check)
   kDissimilarity,  ///< Carpin's ψ over the overlap above its bar (the virtual robot's check)
 };
 
