@@ -145,6 +145,15 @@ BENCHMARK_CAPTURE(BM_Merge400, chain_seed_psi_intel, "chain:seed+psi", "carpin-i
 BENCHMARK_CAPTURE(BM_Merge400, psi_walk_intel, "psi_walk", "carpin-intel.txt", "")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
+/// The virtual robot, its accepted merges verified by ψ over the overlap, and without that check
+/// (the difference is the check's cost).
+BENCHMARK_CAPTURE(BM_Merge400, virtual_intel, "virtual", "carpin-intel.txt", "")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(kCases);
+BENCHMARK_CAPTURE(BM_Merge400, virtual_unchecked_intel, "virtual", "carpin-intel.txt",
+                  "virtual: {max_overlap_psi: 1000}\n")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(kCases);
 
 /// The exhaustive search alone (exhaustive_search.hpp, default settings) on the same cases, each
 /// searched three times in turn: summing every point of every node, and stopping a node's sums
