@@ -94,24 +94,41 @@ TEST(MergeDissimilarityTest, DistanceMapsEqualTheBruteForceReference) {
   }
 }
 
+// ψ by brute force over both classes and both ways (over the overlap with `on_known`).
+double brutePsi(const GridMap& from, const GridMap& to, const GridTransform& T,
+                const SimilaritySettings& settings, bool on_known, bool& landed) {
+  double psi = 0.0;
+  for (const PsiClass c : {PsiClass::kOccupied, PsiClass::kFree}) {
+    bruteMean(from, to, T, c, settings, psi, landed, on_known);
+    bruteMean(to, from, T.inverse(), c, settings, psi, landed, on_known);
+  }
+  return psi;
+}
+
+// Two random grids and a random transform between them.
+struct RandomPair {
+  GridMap from;
+  GridMap to;
+  GridTransform T;
+};
+
+RandomPair randomPair(std::mt19937& random) {
+  RandomPair pair{randomGrid(12, 10, random), randomGrid(14, 9, random), GridTransform{}};
+  pair.T.theta_rad = std::uniform_real_distribution<double>(-0.5, 0.5)(random);
+  pair.T.t_cells = Eigen::Vector2d(std::uniform_real_distribution<double>(-3.0, 3.0)(random),
+                                   std::uniform_real_distribution<double>(-3.0, 3.0)(random));
+  return pair;
+}
+
 TEST(MergeDissimilarityTest, PsiEqualsTheBruteForceReference) {
   std::mt19937 random(5);
   const SimilaritySettings settings;
   for (int trial = 0; trial < 20; ++trial) {
-    const GridMap from = randomGrid(12, 10, random);
-    const GridMap to = randomGrid(14, 9, random);
-    GridTransform T;
-    T.theta_rad = std::uniform_real_distribution<double>(-0.5, 0.5)(random);
-    T.t_cells = Eigen::Vector2d(std::uniform_real_distribution<double>(-3.0, 3.0)(random),
-                                std::uniform_real_distribution<double>(-3.0, 3.0)(random));
-    double expected = 0.0;
+    const RandomPair pair = randomPair(random);
     bool landed = false;
-    for (const PsiClass c : {PsiClass::kOccupied, PsiClass::kFree}) {
-      bruteMean(from, to, T, c, settings, expected, landed);
-      bruteMean(to, from, T.inverse(), c, settings, expected, landed);
-    }
-    const double psi =
-        dissimilarity(prepareDissimilarity(from, settings), prepareDissimilarity(to, settings), T);
+    const double expected = brutePsi(pair.from, pair.to, pair.T, settings, false, landed);
+    const double psi = dissimilarity(prepareDissimilarity(pair.from, settings),
+                                     prepareDissimilarity(pair.to, settings), pair.T);
     ASSERT_TRUE(landed);
     EXPECT_NEAR(psi, expected, 1e-9) << "trial " << trial;
   }
@@ -121,26 +138,15 @@ TEST(MergeDissimilarityTest, PsiOverTheOverlapEqualsTheBruteForceReference) {
   std::mt19937 random(6);
   const SimilaritySettings settings;
   for (int trial = 0; trial < 20; ++trial) {
-    const GridMap from = randomGrid(12, 10, random);
-    const GridMap to = randomGrid(14, 9, random);
-    GridTransform T;
-    T.theta_rad = std::uniform_real_distribution<double>(-0.5, 0.5)(random);
-    T.t_cells = Eigen::Vector2d(std::uniform_real_distribution<double>(-3.0, 3.0)(random),
-                                std::uniform_real_distribution<double>(-3.0, 3.0)(random));
-    double expected = 0.0;
+    const RandomPair pair = randomPair(random);
     bool landed = false;
-    for (const PsiClass c : {PsiClass::kOccupied, PsiClass::kFree}) {
-      bruteMean(from, to, T, c, settings, expected, landed, true);
-      bruteMean(to, from, T.inverse(), c, settings, expected, landed, true);
-    }
-    const DissimilarityMap prepared_from = prepareDissimilarity(from, settings);
-    const DissimilarityMap prepared_to = prepareDissimilarity(to, settings);
+    const double expected = brutePsi(pair.from, pair.to, pair.T, settings, true, landed);
+    const DissimilarityMap from = prepareDissimilarity(pair.from, settings);
+    const DissimilarityMap to = prepareDissimilarity(pair.to, settings);
     ASSERT_TRUE(landed);
-    EXPECT_NEAR(overlapDissimilarity(prepared_from, prepared_to, T), expected, 1e-9)
-        << "trial " << trial;
-    EXPECT_NE(overlapDissimilarity(prepared_from, prepared_to, T),
-              dissimilarity(prepared_from, prepared_to, T))
-        << "trial " << trial << ": a third of the cells are unknown";
+    EXPECT_NEAR(overlapDissimilarity(from, to, pair.T), expected, 1e-9) << "trial " << trial;
+    EXPECT_NE(overlapDissimilarity(from, to, pair.T), dissimilarity(from, to, pair.T))
+        << "trial " << trial << ": a sixth of the cells are unknown";
   }
 }
 
