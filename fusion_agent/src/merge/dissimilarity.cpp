@@ -36,11 +36,11 @@ void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMa
     if (x < 0 || y < 0 || x >= to.width || y >= to.height) {
       continue;
     }
-    if (kOnKnown && known[static_cast<std::size_t>(y) * static_cast<std::size_t>(to.width) +
-                          static_cast<std::size_t>(x)] == 0) {
+    const std::size_t index = to.index(static_cast<int>(x), static_cast<int>(y));
+    if (kOnKnown && known[index] == 0) {
       continue;
     }
-    const std::int32_t distance = to.at(static_cast<int>(x), static_cast<int>(y));
+    const std::int32_t distance = to.distance[index];
     if (distance < DistanceMap::kFar) {
       sum += distance;
       ++count;

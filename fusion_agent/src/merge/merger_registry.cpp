@@ -92,6 +92,11 @@ std::unique_ptr<MapMerger> makeChain(const Config& chain, const Config* methods,
   return merger;
 }
 
+/// The mergers whose hypotheses the seed pipeline's acceptance judges (makeJudgedMerger).
+bool isJudgedMerger(const std::string& name) {
+  return name == "virtual" || name == "exhaustive" || name == "psi_walk";
+}
+
 /// The mergers whose hypotheses the seed pipeline's acceptance judges: their own settings and the
 /// seed merger's (`judge`).
 std::unique_ptr<MapMerger> makeJudgedMerger(const std::string& name, const Config& settings,
@@ -117,8 +122,7 @@ std::unique_ptr<MapMerger> makeMergerFrom(const std::string& name, const Config&
   if (const std::optional<ChainVariant> variant = chainVariantOf(name)) {
     return makeChain(methods.section("chain"), &methods, variant);
   }
-  if (name == "virtual" || name == "exhaustive" ||
-      name == "psi_walk") {  // judged with the `seed:` section's settings
+  if (isJudgedMerger(name)) {  // judged with the `seed:` section's settings
     return makeJudgedMerger(name, methods.section(name),
                             loadSeedMergerSettings(methods.section("seed")));
   }

@@ -39,10 +39,12 @@ struct DistanceMap {
   int width = 0;
   int height = 0;
   std::vector<std::int32_t> distance;  ///< row by row
-  std::int32_t at(int x, int y) const {
-    return distance[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                    static_cast<std::size_t>(x)];
+  /// Row-by-row index of cell (x, y), in `distance` and in any grid of the same size.
+  std::size_t index(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+           static_cast<std::size_t>(x);
   }
+  std::int32_t at(int x, int y) const { return distance[index(x, y)]; }
 };
 
 /// Algorithm 1 of seed 002 for the cells of `cell_class` (thresholds of `settings`).
