@@ -112,7 +112,8 @@ std::unique_ptr<MapMerger> chainAtBarOf088(const std::string& chain_section) {
 }
 
 // Merges a case with the check off and with the defaults: off, the chain accepts a transform
-// turned more than `least_turn_deg` from the truth; on, it refuses it for another placement.
+// turned more than `least_turn_deg` from the truth; on, its first two steps refuse it for another
+// placement, and the default chain (the virtual robot after them) accepts nothing wrong.
 // Returns the wrong transform's result.
 MergeResult expectTurnedWithoutTheCheckAndRefusedWithIt(const MergeCase& merge_case,
                                                         double least_turn_deg) {
@@ -120,10 +121,11 @@ MergeResult expectTurnedWithoutTheCheckAndRefusedWithIt(const MergeCase& merge_c
       chainWith("cleaner_alternative_rate: 0")->merge(merge_case.a, merge_case.b);
   EXPECT_TRUE(without.accepted) << without.reason;
   EXPECT_GT(angleErrorDeg(merge_case, without.T_to_from), least_turn_deg);
-  const MergeResult with = chainWith("")->merge(merge_case.a, merge_case.b);
+  const MergeResult with = merge_test::chainOfTwoSteps()->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(with.accepted);
   EXPECT_EQ(with.refusal, MergeRefusal::kRival);
   EXPECT_NE(with.reason.find("another placement"), std::string::npos) << with.reason;
+  merge_test::expectNoWrongAccept(merge_case, *chainWith(""));
   return without;
 }
 

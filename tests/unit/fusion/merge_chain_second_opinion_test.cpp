@@ -126,13 +126,16 @@ TEST(MergeChainSecondOpinionTest, ATurnTheSeedStepFindsUnfixedNearByIsRefused) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-intel.txt");
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
+  const std::unique_ptr<MapMerger> two_steps = merge_test::chainOfTwoSteps();
   const std::unique_ptr<MapMerger> without =
       merge_test::chainFrom("chain: {second_opinion_step: \"\"}\n");
   for (const CropPair& pair : kNearMissesWithAnUnfixedTurn) {
     const MergeCase merge_case = merge_test::cut(pair);
-    const MergeResult refused = chain->merge(merge_case.a, merge_case.b);
+    const MergeResult refused = two_steps->merge(merge_case.a, merge_case.b);
     EXPECT_TRUE(refusedByTheSecondOpinion(refused))
         << "case " << pair.case_id << ": " << refused.reason;
+    // The virtual robot after them takes no wrong transform either.
+    merge_test::expectNoWrongAccept(merge_case, *chain);
     if (pair.case_id == 186) {
       continue;  // placed right without it (above)
     }
@@ -147,7 +150,8 @@ TEST(MergeChainSecondOpinionTest, ATurnFarFromTheBarIsNotQuestioned) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
   // Asked at any share, the seed step's placement 1.87° away refuses the truth.
   const MergeResult refused = merge_test::mergedRightByDefaultThenWith(
-      kTruthFarFromTheBar, "chain: {second_opinion_turn_share: 0}\n");
+      kTruthFarFromTheBar,
+      "chain: {" + merge_test::kFirstTwoSteps + ", second_opinion_turn_share: 0}\n");
   EXPECT_TRUE(refusedByTheSecondOpinion(refused)) << refused.reason;
 }
 
@@ -155,7 +159,8 @@ TEST(MergeChainSecondOpinionTest, ASeedPlacementBeyondTheWindowsSaysNothing) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
   // With windows that meet up to 4° apart, the seed step's placement 3.59° away refuses it.
   const MergeResult refused = merge_test::mergedRightByDefaultThenWith(
-      kTruthWithAFartherSeedPlacement, "chain: {second_opinion_deg: 4}\n");
+      kTruthWithAFartherSeedPlacement,
+      "chain: {" + merge_test::kFirstTwoSteps + ", second_opinion_deg: 4}\n");
   EXPECT_TRUE(refusedByTheSecondOpinion(refused)) << refused.reason;
 }
 

@@ -75,6 +75,19 @@ inline std::unique_ptr<MapMerger> chainFrom(const std::string& yaml) {
   return makeMergerFrom("chain", Config::loadString(yaml, "merge.yaml"));
 }
 
+/// The chain's first two default steps (a `chain:` section's `steps`, "key: value" of a flow
+/// mapping): the checks of the exhaustive and seed steps decide a case as they did before the
+/// virtual robot became the default's third step, which may place a case both refuse.
+inline const std::string kFirstTwoSteps = "steps: \"exhaustive,seed\"";
+
+/// The chain of the first two default steps with `chain_body` ("key: value, ...") as the rest of
+/// its `chain:` section and `rest` (a merge config's other sections) over the defaults.
+inline std::unique_ptr<MapMerger> chainOfTwoSteps(const std::string& chain_body = "",
+                                                  const std::string& rest = "") {
+  return chainFrom("chain: {" + kFirstTwoSteps + (chain_body.empty() ? "" : ", " + chain_body) +
+                   "}\n" + rest);
+}
+
 /// The chain merger with `seed_section` (a flow mapping's body, "key: value, ...") as its `seed:`
 /// settings over the defaults.
 inline std::unique_ptr<MapMerger> chainWithSeed(const std::string& seed_section) {

@@ -61,17 +61,25 @@ TEST(MergeDirtierRivalTest, RivalsThatCoverMoreButFitWorseDoNotRefuseTheTruth) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
   // At the structure bar of 0.88: case 83's rival (0.89) is no rival at the default bar.
-  const std::string bar = merge_test::kStructureBarAt088 + ", ";
+  // The first two steps only: the virtual robot after them may place what their rivals refuse.
+  const auto two_steps_with_seed = [](const std::string& seed_section) {
+    return merge_test::chainOfTwoSteps(
+        "", "seed: {" + merge_test::kStructureBarAt088 + ", " + seed_section + "}\n");
+  };
   const std::unique_ptr<MapMerger> every_rival =
-      merge_test::chainWithSeed(bar + "dirtier_rival_structure: 0");  // off
+      two_steps_with_seed("dirtier_rival_structure: 0");  // off
   const std::unique_ptr<MapMerger> rate_bar_out_of_reach =
-      merge_test::chainWithSeed(bar + "dirtier_rival_rate: 100");
+      two_steps_with_seed("dirtier_rival_rate: 100");
   const std::unique_ptr<MapMerger> structure_bar_out_of_reach =
-      merge_test::chainWithSeed(bar + "dirtier_rival_structure: 0.5");
+      two_steps_with_seed("dirtier_rival_structure: 0.5");
   for (const CropPair& pair : kTruthsWithDirtierRivals) {
     const MergeCase merge_case = merge_test::cut(pair);
     merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
     expectRefusedForARival(merge_case, *every_rival);
+    // With every rival on, the default chain's virtual robot takes nothing wrong after them.
+    merge_test::expectNoWrongAccept(merge_case,
+                                    *merge_test::chainWithSeed(merge_test::kStructureBarAt088 +
+                                                               ", dirtier_rival_structure: 0"));
     // Neither bar alone makes the rival dirtier: its walls must meet walls less well and its
     // cells disagree more often.
     expectRefusedForARival(merge_case, *rate_bar_out_of_reach);

@@ -250,7 +250,7 @@ void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& se
 ChainSettings loadChainSettings(const Config& chain);
 
 /// The default steps of a chain.
-constexpr const char* kDefaultChainSteps = "exhaustive,seed";
+constexpr const char* kDefaultChainSteps = "exhaustive,seed,virtual";
 
 /// The step names of a `steps` value ("exhaustive,seed"); throws std::invalid_argument for an empty
 /// list, "chain" itself or a repeated step.
