@@ -9,6 +9,7 @@
 #include <random>
 
 #include "mrslam/common/se2.hpp"
+#include "mrslam/fusion/merge/similarity.hpp"
 #include "mrslam/fusion/merge/skeleton.hpp"
 
 namespace mrslam::fusion {
@@ -88,8 +89,8 @@ double scanLogLikelihood(const cv::Mat& field, const std::vector<Eigen::Vector2d
   double sum = 0.0;
   for (const Eigen::Vector2d& point : points) {
     const Eigen::Vector2d p = pose * point;
-    const int x = static_cast<int>(std::lround(p.x()));
-    const int y = static_cast<int>(std::lround(p.y()));
+    const int x = roundToInt(p.x());
+    const int y = roundToInt(p.y());
     double d = cap;
     if (x >= 0 && y >= 0 && x < field.cols && y < field.rows) {
       d = std::min(cap, static_cast<double>(field.at<float>(y, x)));
@@ -213,8 +214,8 @@ std::vector<Eigen::Vector2d> virtualScan(const GridMap& map, const CellPose& pos
                               std::sin(pose.heading_rad + angle));
     for (double r = kRayStepCells; r <= settings.max_range_cells; r += kRayStepCells) {
       const Eigen::Vector2d p = pose.cell + r * ray;
-      const int x = static_cast<int>(std::lround(p.x()));
-      const int y = static_cast<int>(std::lround(p.y()));
+      const int x = roundToInt(p.x());
+      const int y = roundToInt(p.y());
       if (!g.contains(x, y) || map.at(x, y) == GridMap::kUnknown) {
         break;
       }

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <opencv2/imgproc.hpp>
+#include <random>
+#include <vector>
 
 #include "merge_test_maps.hpp"
 #include "test_data.hpp"
@@ -37,6 +40,78 @@ bool oneCellWide(const cv::Mat& binary) {
 
 cv::Mat canvas() {
   return cv::Mat(60, 80, CV_8U, cv::Scalar(0));
+}
+
+// Zhang & Suen by their definition (skeleton.hpp): each sub-iteration looks at every cell of the
+// image, marks the removable ones, then removes them; the passes repeat until neither removes one.
+int thinByEveryCell(cv::Mat& image) {
+  const auto set = [&image](int x, int y) {
+    return x >= 0 && y >= 0 && x < image.cols && y < image.rows && image.at<std::uint8_t>(y, x) != 0
+               ? 1
+               : 0;
+  };
+  const auto sub_iteration = [&](bool first) {
+    std::vector<cv::Point> removed;
+    for (int y = 0; y < image.rows; ++y) {
+      for (int x = 0; x < image.cols; ++x) {
+        // P2 … P9, clockwise from north.
+        const std::array<int, 8> p = {set(x, y - 1),     set(x + 1, y - 1), set(x + 1, y),
+                                      set(x + 1, y + 1), set(x, y + 1),     set(x - 1, y + 1),
+                                      set(x - 1, y),     set(x - 1, y - 1)};
+        int b = 0;
+        int a = 0;
+        for (std::size_t i = 0; i < 8; ++i) {
+          b += p[i];
+          a += p[i] == 0 && p[(i + 1) % 8] == 1 ? 1 : 0;
+        }
+        const bool corner = first ? p[0] * p[2] * p[4] == 0 && p[2] * p[4] * p[6] == 0
+                                  : p[0] * p[2] * p[6] == 0 && p[0] * p[4] * p[6] == 0;
+        if (set(x, y) && b >= 2 && b <= 6 && a == 1 && corner) {
+          removed.emplace_back(x, y);
+        }
+      }
+    }
+    for (const cv::Point& cell : removed) {
+      image.at<std::uint8_t>(cell) = 0;
+    }
+    return !removed.empty();
+  };
+  int passes = 0;
+  bool changed = true;
+  while (changed) {
+    changed = sub_iteration(true);
+    changed = sub_iteration(false) || changed;
+    ++passes;
+  }
+  return passes;
+}
+
+TEST(MergeSkeletonTest, ThinningEqualsTheDefinitionCellForCell) {
+  // Random blobs of free space (rectangles and discs, with holes) on images of several sizes,
+  // touching the edges too: the thinning, which looks only at cells beside unset ones, leaves
+  // exactly the cells, in exactly the passes, of looking at every cell every time.
+  std::mt19937 rng(42);
+  std::uniform_int_distribution<int> size(5, 90);
+  for (int trial = 0; trial < 40; ++trial) {
+    cv::Mat image(size(rng), size(rng), CV_8U, cv::Scalar(0));
+    std::uniform_int_distribution<int> column(-5, image.cols + 5);
+    std::uniform_int_distribution<int> row(-5, image.rows + 5);
+    std::uniform_int_distribution<int> extent(1, 30);
+    for (int shape = 0; shape < 12; ++shape) {
+      const cv::Scalar value(shape % 4 == 3 ? 0 : 255);
+      if (shape % 2 == 0) {
+        cv::rectangle(image, cv::Rect(column(rng), row(rng), extent(rng), extent(rng)), value,
+                      cv::FILLED);
+      } else {
+        cv::circle(image, cv::Point(column(rng), row(rng)), extent(rng) / 2, value, cv::FILLED);
+      }
+    }
+    cv::Mat reference = image.clone();
+    const int reference_passes = thinByEveryCell(reference);
+    const int passes = thinZhangSuen(image);
+    EXPECT_EQ(passes, reference_passes) << "trial " << trial;
+    EXPECT_EQ(cv::countNonZero(image != reference), 0) << "trial " << trial;
+  }
 }
 
 TEST(MergeSkeletonTest, AThickBarBecomesALineAlongItsMiddle) {

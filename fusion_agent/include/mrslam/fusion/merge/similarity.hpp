@@ -91,7 +91,8 @@ inline int roundToInt(double v) {
   }
   const int truncated = static_cast<int>(v);
   const double fraction = v - static_cast<double>(truncated);
-  return fraction >= 0.5 ? truncated + 1 : (fraction <= -0.5 ? truncated - 1 : truncated);
+  // Summed as 0 or 1 rather than chosen: no branch on the fraction, which falls either way.
+  return truncated + static_cast<int>(fraction >= 0.5) - static_cast<int>(fraction <= -0.5);
 }
 
 /// The cell (column, row) where a cell of `from` lands in `to` under T_to_from: floor(T p + 0.5)
