@@ -2,6 +2,7 @@
 
 #include <array>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 #include <vector>
 
 namespace mrslam::fusion {

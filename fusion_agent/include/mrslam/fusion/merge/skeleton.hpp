@@ -6,7 +6,8 @@
 //   A(P) = 1            (A: free-after-not-free transitions around P2, P3, …, P9, P2),
 //   first pass:  P2·P4·P6 = 0 and P4·P6·P8 = 0   (south-east boundary and north-west corner),
 //   second pass: P2·P4·P8 = 0 and P2·P6·P8 = 0   (north-west boundary and south-east corner),
-// and the two passes repeat until neither removes a cell. The virtual robot walks the skeleton.
+// and the two passes repeat until neither removes a cell (each pass looks only at the set cells
+// beside an unset one: with B(P) = 8 no other can go). The virtual robot walks the skeleton.
 
 #include <opencv2/core.hpp>
 
