@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "mrslam/fusion/merge/similarity.hpp"
 #include "seed_stages.hpp"
 
 namespace mrslam::fusion::seed {
@@ -12,13 +13,6 @@ namespace mrslam::fusion::seed {
 namespace {
 
 constexpr int kMargin = 8;  // cells around `to`'s walls where nearest walls are looked up
-
-// std::lround's result (halves away from zero) without its call: v's fractional part is exact.
-int roundToInt(double v) {
-  const int truncated = static_cast<int>(v);
-  const double fraction = v - truncated;
-  return fraction >= 0.5 ? truncated + 1 : (fraction <= -0.5 ? truncated - 1 : truncated);
-}
 
 // The rigid transform (rotation, translation) that best maps `from` onto `to` (least squares).
 GridTransform fitRigid(const std::vector<Eigen::Vector2d>& from,

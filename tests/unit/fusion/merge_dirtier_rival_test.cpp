@@ -66,8 +66,11 @@ TEST(MergeDirtierRivalTest, RivalsThatCoverMoreButFitWorseDoNotRefuseTheTruth) {
     return merge_test::chainOfTwoSteps(
         "", "seed: {" + merge_test::kStructureBarAt088 + ", " + seed_section + "}\n");
   };
-  const std::unique_ptr<MapMerger> every_rival =
-      two_steps_with_seed("dirtier_rival_structure: 0");  // off
+  const std::string no_dirtier_rivals = "dirtier_rival_structure: 0";  // every rival counts
+  const std::unique_ptr<MapMerger> every_rival = two_steps_with_seed(no_dirtier_rivals);
+  // ... and the default chain, the virtual robot after them, with every rival on.
+  const std::unique_ptr<MapMerger> every_rival_then_virtual =
+      merge_test::chainWithSeed(merge_test::kStructureBarAt088 + ", " + no_dirtier_rivals);
   const std::unique_ptr<MapMerger> rate_bar_out_of_reach =
       two_steps_with_seed("dirtier_rival_rate: 100");
   const std::unique_ptr<MapMerger> structure_bar_out_of_reach =
@@ -77,9 +80,7 @@ TEST(MergeDirtierRivalTest, RivalsThatCoverMoreButFitWorseDoNotRefuseTheTruth) {
     merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
     expectRefusedForARival(merge_case, *every_rival);
     // With every rival on, the default chain's virtual robot takes nothing wrong after them.
-    merge_test::expectNoWrongAccept(merge_case,
-                                    *merge_test::chainWithSeed(merge_test::kStructureBarAt088 +
-                                                               ", dirtier_rival_structure: 0"));
+    merge_test::expectNoWrongAccept(merge_case, *every_rival_then_virtual);
     // Neither bar alone makes the rival dirtier: its walls must meet walls less well and its
     // cells disagree more often.
     expectRefusedForARival(merge_case, *rate_bar_out_of_reach);
