@@ -315,8 +315,8 @@ Eigen::Vector2d overlapCentre(const GridMap& from, const GridMap& to,
         continue;
       }
       const Eigen::Vector2d there = to_cell(Eigen::Vector2d(x, y));
-      const int to_x = static_cast<int>(std::lround(there.x()));
-      const int to_y = static_cast<int>(std::lround(there.y()));
+      const int to_x = roundToInt(there.x());
+      const int to_y = roundToInt(there.y());
       if (to.geometry.contains(to_x, to_y) && to.at(to_x, to_y) != GridMap::kUnknown) {
         sum += Eigen::Vector2d(x, y);
         count += 1.0;

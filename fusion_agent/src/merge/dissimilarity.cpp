@@ -31,12 +31,12 @@ void addMeanDistance(const std::vector<Eigen::Vector2i>& cells, const DistanceMa
   for (const Eigen::Vector2i& cell : cells) {
     const double cx = cell.x();
     const double cy = cell.y();
-    const long x = std::lround((c * cx - s * cy) + tx);
-    const long y = std::lround((s * cx + c * cy) + ty);
+    const int x = roundToInt((c * cx - s * cy) + tx);
+    const int y = roundToInt((s * cx + c * cy) + ty);
     if (x < 0 || y < 0 || x >= to.width || y >= to.height) {
       continue;
     }
-    const std::size_t index = to.index(static_cast<int>(x), static_cast<int>(y));
+    const std::size_t index = to.index(x, y);
     if (kOnKnown && known[index] == 0) {
       continue;
     }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "mrslam/fusion/merge/similarity.hpp"
+
 namespace mrslam::fusion {
 namespace {
 
@@ -62,8 +64,8 @@ OverlapScore scoreOverlap(const GridMap& from, const GridMap& to, const GridTran
         continue;
       }
       ++merged_cells;
-      const int tx = static_cast<int>(std::lround(c * x - s * y + T_to_from.t_cells.x()));
-      const int ty = static_cast<int>(std::lround(s * x + c * y + T_to_from.t_cells.y()));
+      const int tx = roundToInt(c * x - s * y + T_to_from.t_cells.x());
+      const int ty = roundToInt(s * x + c * y + T_to_from.t_cells.y());
       const std::int8_t other = gt.contains(tx, ty) ? to.at(tx, ty) : GridMap::kUnknown;
       if (other < 0) {
         entropy_sum += entropyOf(2 * value);
