@@ -22,38 +22,76 @@ using exhaustive::valueGrid;
 using exhaustive::ValuePyramid;
 using exhaustive::valuePyramid;
 
-/// Step 3: one rotation's turned points as offsets into the pyramid's rows (turnedOffsets).
-struct Rotation {
-  double theta = 0.0;
-  std::vector<std::ptrdiff_t> walls;
-  std::vector<std::ptrdiff_t> free;
+/// Points turned by one angle as offsets into the pyramid's rows, in memory order, so that the
+/// points on a range of rows are a range of the offsets: every |column offset| is below half the
+/// stride (the pad exceeds the points' radius). `row_starts[k]` is the index of the first point
+/// on a row at or above `first_row + k` (the last entry: the count), so that a range of rows is
+/// found without a search.
+struct TurnedPoints {
+  std::vector<std::ptrdiff_t> offsets;
+  std::ptrdiff_t first_row = 0;
+  std::vector<std::size_t> row_starts;
+
+  /// The offsets of the points whose row offset lies within [first, last].
+  std::pair<const std::ptrdiff_t*, const std::ptrdiff_t*> onRows(std::ptrdiff_t first,
+                                                                 std::ptrdiff_t last) const {
+    const auto start = [this](std::ptrdiff_t row) {
+      const std::ptrdiff_t k = std::clamp<std::ptrdiff_t>(
+          row - first_row, 0, static_cast<std::ptrdiff_t>(row_starts.size()) - 1);
+      return row_starts[static_cast<std::size_t>(k)];
+    };
+    const std::size_t begin = start(first);
+    const std::size_t end = std::max(begin, start(last + 1));
+    return {offsets.data() + begin, offsets.data() + end};
+  }
+  std::pair<const std::ptrdiff_t*, const std::ptrdiff_t*> all() const {
+    return {offsets.data(), offsets.data() + offsets.size()};
+  }
 };
 
-/// In memory order, so that the points on a range of rows are a range of the offsets: every
-/// |column offset| is below half the stride (the pad exceeds the points' radius).
-std::vector<std::ptrdiff_t> turnedOffsets(const std::vector<Eigen::Vector2d>& points, double theta,
-                                          int stride) {
+/// Step 3: one rotation's turned points (turnedPoints).
+struct Rotation {
+  double theta = 0.0;
+  TurnedPoints walls;
+  TurnedPoints free;
+};
+
+/// Fills `turned.first_row` and `turned.row_starts` from its sorted offsets.
+void indexRows(std::ptrdiff_t stride, TurnedPoints& turned) {
+  // The row of an offset y · stride + x with |x| < stride / 2, rounded down.
+  const std::ptrdiff_t half = stride / 2;
+  const auto rowOf = [&](std::ptrdiff_t offset) {
+    const std::ptrdiff_t shifted = offset + half;
+    return shifted >= 0 ? shifted / stride : -((-shifted + stride - 1) / stride);
+  };
+  if (turned.offsets.empty()) {
+    turned.row_starts = {0};
+    return;
+  }
+  turned.first_row = rowOf(turned.offsets.front());
+  const std::ptrdiff_t rows = rowOf(turned.offsets.back()) - turned.first_row + 1;
+  turned.row_starts.assign(static_cast<std::size_t>(rows) + 1, turned.offsets.size());
+  for (std::size_t i = turned.offsets.size(); i-- > 0;) {
+    turned.row_starts[static_cast<std::size_t>(rowOf(turned.offsets[i]) - turned.first_row)] = i;
+  }
+  for (std::size_t k = turned.row_starts.size() - 1; k-- > 0;) {  // rows without points
+    turned.row_starts[k] = std::min(turned.row_starts[k], turned.row_starts[k + 1]);
+  }
+}
+
+TurnedPoints turnedPoints(const std::vector<Eigen::Vector2d>& points, double theta, int stride) {
   const double c = std::cos(theta);
   const double s = std::sin(theta);
-  std::vector<std::ptrdiff_t> offsets;
-  offsets.reserve(points.size());
+  TurnedPoints turned;
+  turned.offsets.reserve(points.size());
   for (const Eigen::Vector2d& p : points) {
     const std::ptrdiff_t x = roundToInt(c * p.x() - s * p.y());
     const std::ptrdiff_t y = roundToInt(s * p.x() + c * p.y());
-    offsets.push_back(y * stride + x);
+    turned.offsets.push_back(y * stride + x);
   }
-  std::sort(offsets.begin(), offsets.end());
-  return offsets;
-}
-
-/// The offsets (sorted) of the points whose row offset lies within [first_row, last_row].
-std::pair<const std::ptrdiff_t*, const std::ptrdiff_t*> offsetsOnRows(
-    const std::vector<std::ptrdiff_t>& offsets, std::ptrdiff_t first_row, std::ptrdiff_t last_row,
-    std::ptrdiff_t stride) {
-  const std::ptrdiff_t half = stride / 2;
-  const auto begin = std::lower_bound(offsets.begin(), offsets.end(), first_row * stride - half);
-  const auto end = std::lower_bound(begin, offsets.end(), last_row * stride + half + 1);
-  return {offsets.data() + (begin - offsets.begin()), offsets.data() + (end - offsets.begin())};
+  std::sort(turned.offsets.begin(), turned.offsets.end());
+  indexRows(stride, turned);
+  return turned;
 }
 
 /// Whether `theta` lies within `window` of one of `turns` (always, when there are none).
@@ -75,8 +113,8 @@ std::vector<Rotation> rotations(const PointSet& set, int stride, double step_cel
     if (!nearAny(rotation.theta, turns, window)) {
       continue;
     }
-    rotation.walls = turnedOffsets(set.walls, rotation.theta, stride);
-    rotation.free = turnedOffsets(set.free, rotation.theta, stride);
+    rotation.walls = turnedPoints(set.walls, rotation.theta, stride);
+    rotation.free = turnedPoints(set.free, rotation.theta, stride);
     kept.push_back(std::move(rotation));
   }
   return kept;
@@ -263,9 +301,8 @@ class BranchAndBound {
     // Only the points whose rows (or rows + half) hold values of level h add anything.
     const std::ptrdiff_t first_row = pyramid_.first_valued_row[h] - row - half;
     const std::ptrdiff_t last_row = pyramid_.last_valued_row - row;
-    const auto onRows = [&](const std::vector<std::ptrdiff_t>& offsets) {
-      return stop_early_ ? offsetsOnRows(offsets, first_row, last_row, pyramid_.stride)
-                         : std::make_pair(offsets.data(), offsets.data() + offsets.size());
+    const auto onRows = [&](const TurnedPoints& points) {
+      return stop_early_ ? points.onRows(first_row, last_row) : points.all();
     };
     const auto walls = onRows(turned.walls);
     const auto free = onRows(turned.free);
