@@ -69,13 +69,14 @@ void indexRows(std::ptrdiff_t stride, TurnedPoints& turned) {
     return;
   }
   turned.first_row = rowOf(turned.offsets.front());
-  const std::ptrdiff_t rows = rowOf(turned.offsets.back()) - turned.first_row + 1;
-  turned.row_starts.assign(static_cast<std::size_t>(rows) + 1, turned.offsets.size());
-  for (std::size_t i = turned.offsets.size(); i-- > 0;) {
-    turned.row_starts[static_cast<std::size_t>(rowOf(turned.offsets[i]) - turned.first_row)] = i;
-  }
-  for (std::size_t k = turned.row_starts.size() - 1; k-- > 0;) {  // rows without points
-    turned.row_starts[k] = std::min(turned.row_starts[k], turned.row_starts[k + 1]);
+  const std::ptrdiff_t last_row = rowOf(turned.offsets.back());
+  // The rows rise with the sorted offsets: one walk along them finds each row's start.
+  std::size_t i = 0;
+  for (std::ptrdiff_t row = turned.first_row; row <= last_row + 1; ++row) {
+    while (i < turned.offsets.size() && rowOf(turned.offsets[i]) < row) {
+      ++i;
+    }
+    turned.row_starts.push_back(i);
   }
 }
 
