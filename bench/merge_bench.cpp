@@ -5,10 +5,11 @@
 // the median, the 90th percentile and the share merged within 2 cells and 1° of the truth for
 // other mergers of the registry (the exhaustive search, the chain) on the same cases, searching
 // every rotation or only those near the turns the walls suggest (`rotation_peaks`);
-// BM_ExhaustiveSearch400 the exhaustive search alone, with and without its early stop, and near
-// the suggested turns.
-// BM_MergeWholeBuilding: two turned 700-cell windows of the ACES map (crops of about 1000 cells a
-// side, which the exhaustive search takes on larger cells, max_grid_cells).
+// BM_MergeBlocks400 the default merger's median and each of its blocks' share of the time
+// (MapMerger::lastBlockTimes); BM_ExhaustiveSearch400 the exhaustive search alone, with and without
+// its early stop, and near the suggested turns. BM_MergeWholeBuilding: two turned 700-cell windows
+// of the ACES map (crops of about 1000 cells a side, which the exhaustive search takes on larger
+// cells, max_grid_cells).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -154,6 +155,40 @@ BENCHMARK_CAPTURE(BM_Merge400, virtual_unchecked_intel, "virtual", "carpin-intel
                   "virtual: {max_overlap_psi: 1000}\n")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
+
+/// The default merger (the chain, every setting its default) on the same cases: the median and
+/// each block's share of the merges' total time (MapMerger::lastBlockTimes: the exhaustive
+/// step's preparation, search, judge, the other way's judge and the alignment, the chain's
+/// checks, any later step), "unaccounted" the chain's own time between them.
+void BM_MergeBlocks400(benchmark::State& state, const char* file) {
+  const std::unique_ptr<MapMerger> merger = makeMerger("chain");
+  std::vector<double> times;
+  BlockTimes total;
+  int correct = 0;
+  if (!mergeCases(state, file, *merger, times,
+                  [&](const MergeResult& result, const merge_test::KnownCase& pair) {
+                    correct += withinTolerance(result, pair) ? 1 : 0;
+                    for (const BlockTime& block : merger->lastBlockTimes()) {
+                      addBlockTime(total, block.name, block.ms);
+                    }
+                  })) {
+    return;
+  }
+  const double sum = std::accumulate(times.begin(), times.end(), 0.0);
+  state.counters["median_ms"] = percentileOf(times, 0.5);
+  state.counters["correct_share"] =
+      static_cast<double>(correct) / static_cast<double>(times.size());
+  for (const BlockTime& block : total) {
+    state.counters[block.name] = block.ms / sum;
+  }
+  state.counters["unaccounted"] = 1.0 - totalMs(total) / sum;
+}
+BENCHMARK_CAPTURE(BM_MergeBlocks400, intel, "carpin-intel.txt")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2 * kCases);
+BENCHMARK_CAPTURE(BM_MergeBlocks400, freiburg_aces, "freiburg-aces.pgm")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2 * kCases);
 
 /// The exhaustive search alone (exhaustive_search.hpp, default settings) on the same cases, each
 /// searched three times in turn: summing every point of every node, and stopping a node's sums

@@ -167,40 +167,49 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
   std::vector<GridTransform> undecided;  // placements an earlier step refused for a cleaner one
   SecondOpinion second;                  // the second-opinion step's result, when it ran already
   PreparedPair pair(from, to, settings_, judge_.settings().similarity);
+  times_.clear();
   for (const auto& step : steps_) {
-    MergeResult result = step.get() == second.step ? second.result : step->merge(from, to);
+    MergeResult result =
+        step.get() == second.step ? second.result : timedStepMerge(*step, from, to);
     if (step->name() == settings_.second_opinion_step) {
       second = {step.get(), result};
     }
     trials += result.trials;
     searched.insert(searched.end(), result.hypotheses.begin(), result.hypotheses.end());
     if (result.accepted && !undecided.empty()) {
-      judgeAgainstUndecided(from, undecided, result);
+      timeBlock(times_, "chain/undecided", [&] { judgeAgainstUndecided(from, undecided, result); });
     }
     if (result.accepted && !earlier.empty()) {
-      judgeAgainstEarlier(from, to, earlier, result);
+      timeBlock(times_, "chain/earlier", [&] { judgeAgainstEarlier(from, to, earlier, result); });
     }
     if (result.accepted && settings_.sweep_rivals) {
-      judgeAgainstSweep(from, to, pair, result);
+      timeBlock(times_, "chain/sweep", [&] { judgeAgainstSweep(from, to, pair, result); });
     }
     if (result.accepted && !settings_.turned_rival_degrees.empty()) {
-      judgeAgainstTurns(from, to, result);
+      timeBlock(times_, "chain/turns", [&] { judgeAgainstTurns(from, to, result); });
     }
     if (result.accepted &&
         (settings_.cleaner_alternative_rate > 0.0 || settings_.slid_alternative_rate > 0.0 ||
          settings_.walls_alternative_rate > 0.0)) {
-      judgeAgainstAlternatives(from, to, searched, pair, undecided, result);
+      timeBlock(times_, "chain/alternatives",
+                [&] { judgeAgainstAlternatives(from, to, searched, pair, undecided, result); });
     }
     if (result.accepted) {
-      askSecondOpinion(from, to, *step, second, result);
+      timeBlock(times_, "chain/second_opinion",
+                [&] { askSecondOpinion(from, to, *step, second, result); });
     }
     if (result.accepted) {
       result.trials = trials;
       if (settings_.refine_psi) {
-        refineByPsi(from, to, settings_, judge_.settings().similarity, result);
+        timeBlock(times_, "chain/psi",
+                  [&] { refineByPsi(from, to, settings_, judge_.settings().similarity, result); });
       }
-      refuseWhereSlidesCostLittle(from, to, settings_, judge_.settings().similarity, step->name(),
-                                  name(), result);
+      if (settings_.min_slide_margin_cells > 0) {
+        timeBlock(times_, "chain/slides", [&] {
+          refuseWhereSlidesCostLittle(from, to, settings_, judge_.settings().similarity,
+                                      step->name(), name(), result);
+        });
+      }
       return result;
     }
     reasons += (reasons.empty() ? "" : "; ") + step->name() + ": " + result.reason;
@@ -213,6 +222,19 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
   last.trials = trials;
   last.reason = reasons;
   return last;
+}
+
+MergeResult ChainMerger::timedStepMerge(MapMerger& step, const GridMap& from, const GridMap& to) {
+  BlockTimes step_total;
+  MergeResult result = timeBlock(step_total, step.name(), [&] { return step.merge(from, to); });
+  const BlockTimes inner = step.lastBlockTimes();
+  if (inner.empty()) {
+    addBlockTime(times_, step.name(), totalMs(step_total));
+    return result;
+  }
+  addBlockTimes(times_, step.name(), inner);
+  addBlockTime(times_, step.name() + "/rest", std::max(0.0, totalMs(step_total) - totalMs(inner)));
+  return result;
 }
 
 void ChainMerger::judgeAgainstEarlier(const GridMap& from, const GridMap& to,

@@ -100,19 +100,27 @@ std::vector<GridTransform> ExhaustiveMerger::hypotheses(const GridMap& from, con
 }
 
 MergeResult ExhaustiveMerger::merge(const GridMap& from, const GridMap& to) {
+  times_.clear();
+  BlockClock clock;
   const ExhaustiveScore score(from, to, settings_.search, classes_);
-  const std::vector<GridTransform> found = hypotheses(from, to, score);
-  MergeResult result = judgeFoundHypotheses(judge_, from, to, found, name(), "exhaustive search");
+  addBlockTime(times_, "prepare", clock.lapMs());
+  const std::vector<GridTransform> found =
+      timeBlock(times_, "search", [&] { return hypotheses(from, to, score); });
+  MergeResult result = timeBlock(times_, "judge", [&] {
+    return judgeFoundHypotheses(judge_, from, to, found, name(), "exhaustive search");
+  });
   result.hypotheses = found;
   if (!result.accepted) {
     return result;
   }
   const Eigen::Vector2d pivot = knownCentroid(from);
-  applyOwnPeakChecks(from, to, score, pivot, result);
-  if (result.accepted && settings_.check_both_ways) {
-    checkTheOtherWay(from, to, found, pivot, result);
+  if (ownPeakNeeded()) {
+    timeBlock(times_, "own_peak", [&] { applyOwnPeakChecks(from, to, score, pivot, result); });
   }
-  judge_.alignOnInputs(from, to, result);
+  if (result.accepted && settings_.check_both_ways) {
+    timeBlock(times_, "other_way", [&] { checkTheOtherWay(from, to, found, pivot, result); });
+  }
+  timeBlock(times_, "alignment", [&] { judge_.alignOnInputs(from, to, result); });
   return result;
 }
 
@@ -156,12 +164,16 @@ void ExhaustiveMerger::refuseUnlessTurnFixed(const ExhaustiveScore& score,
   }
 }
 
+bool ExhaustiveMerger::ownPeakNeeded() const {
+  return settings_.check_own_score || settings_.max_turn_ambiguity < 1.0 ||
+         settings_.return_own_peak;
+}
+
 void ExhaustiveMerger::applyOwnPeakChecks(const GridMap& from, const GridMap& to,
                                           const ExhaustiveScore& score,
                                           const Eigen::Vector2d& pivot, MergeResult& result) const {
-  if (!settings_.check_own_score && settings_.max_turn_ambiguity >= 1.0 &&
-      !settings_.return_own_peak) {
-    return;  // the peak is not needed
+  if (!ownPeakNeeded()) {
+    return;
   }
   constexpr int kTurnSteps = 8;
   const ExhaustiveHypothesis best =

@@ -121,6 +121,27 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
   return inputs;
 }
 
+BlockTimes SeedMerger::lastBlockTimes() const {
+  const std::pair<const char*, SeedMergeTimings::Duration> blocks[] = {
+      {"edges", timings_.edges},
+      {"radon", timings_.radon},
+      {"segments", timings_.segments},
+      {"correlation", timings_.correlation},
+      {"poses", timings_.poses},
+      {"translation", timings_.translation},
+      {"verification", timings_.verification},
+      {"fallback", timings_.fallback},
+      {"global", timings_.global},
+      {"alignment", timings_.alignment}};
+  BlockTimes times;
+  for (const auto& [name, duration] : blocks) {
+    if (duration.count() > 0.0) {
+      addBlockTime(times, name, duration.count());
+    }
+  }
+  return times;
+}
+
 MergeResult SeedMerger::merge(const GridMap& from, const GridMap& to) {
   timings_ = {};
   MergeResult result;

@@ -146,8 +146,16 @@ class ChainMerger : public MapMerger {
       step->shareSearchInputs(cache);
     }
   }
+  /// The last merge's blocks: each step that ran, by its own blocks ("exhaustive/search", ...,
+  /// "exhaustive/rest" for the time between them) or as one block (its name) when it times none,
+  /// and each check the chain ran on an accepted transform ("chain/sweep", "chain/turns",
+  /// "chain/alternatives", "chain/second_opinion", ...; a second opinion's own step counts there).
+  BlockTimes lastBlockTimes() const override { return times_; }
 
  private:
+  /// step.merge(), its time added to times_ (by the step's own blocks where it times them).
+  MergeResult timedStepMerge(MapMerger& step, const GridMap& from, const GridMap& to);
+
   /// Refuses the accepted `result` when one of the `earlier` refused transforms is its rival.
   void judgeAgainstEarlier(const GridMap& from, const GridMap& to,
                            const std::vector<GridTransform>& earlier, MergeResult& result);
@@ -230,6 +238,7 @@ class ChainMerger : public MapMerger {
   std::vector<std::unique_ptr<MapMerger>> steps_;
   ChainSettings settings_;
   SeedMerger judge_;
+  BlockTimes times_;  // of the last merge
 };
 
 /// With min_slide_margin_cells: refuses the accepted `result` of step `step` when its slides cost

@@ -67,6 +67,12 @@ class ExhaustiveMerger : public MapMerger {
     judge_.shareSearchInputs(cache);
   }
 
+  /// The last merge's blocks: "prepare" (the score's grids of both maps), "search" (steps 1-7),
+  /// "judge" (the seed acceptance of the hypotheses), then on an accepted transform "own_peak"
+  /// (when a setting asks for it), "other_way" (with check_both_ways) and "alignment" (the walls
+  /// aligned both ways).
+  BlockTimes lastBlockTimes() const override { return times_; }
+
   /// The search's hypotheses, best first, before they are judged (for tests and tuning).
   std::vector<GridTransform> hypotheses(const GridMap& from, const GridMap& to) const;
 
@@ -79,6 +85,8 @@ class ExhaustiveMerger : public MapMerger {
   void checkTheOtherWay(const GridMap& from, const GridMap& to,
                         const std::vector<GridTransform>& found, const Eigen::Vector2d& pivot,
                         MergeResult& result);
+  /// Whether a setting asks for the search's own peak near the accepted transform.
+  bool ownPeakNeeded() const;
   /// The search's own checks near the accepted transform: with check_own_score, refuses `result`
   /// unless `score` (both ways) peaks within the agreement of it; with max_turn_ambiguity below 1,
   /// unless a turn scores clearly less there; with return_own_peak, returns that peak.
@@ -96,6 +104,7 @@ class ExhaustiveMerger : public MapMerger {
   ExhaustiveMergerSettings settings_;
   SeedMerger judge_;
   SimilaritySettings classes_;
+  BlockTimes times_;  // of the last merge
 };
 
 }  // namespace mrslam::fusion

@@ -13,6 +13,7 @@
 
 #include "mrslam/common/grid_map.hpp"
 #include "mrslam/common/se2.hpp"
+#include "mrslam/fusion/merge/block_times.hpp"
 
 namespace mrslam::fusion {
 
@@ -120,6 +121,9 @@ class MapMerger {
   /// maps in `cache` (seed_merger.hpp): a chain hands one to its steps and its own judge, all
   /// built from the same `seed:` settings. The others ignore it.
   virtual void shareSearchInputs(const std::shared_ptr<SearchInputsCache>& /*cache*/) {}
+  /// Where the last merge() spent its time, block by block (block_times.hpp); empty for a
+  /// merger that does not time its blocks.
+  virtual BlockTimes lastBlockTimes() const { return {}; }
 };
 
 }  // namespace mrslam::fusion

@@ -280,6 +280,8 @@ class SeedMerger : public MapMerger {
     inputs_cache_ = cache;
   }
   const SeedMergeTimings& lastTimings() const { return timings_; }
+  /// lastTimings() as named blocks ("edges", "radon", ... "alignment"), those that ran.
+  BlockTimes lastBlockTimes() const override;
   const SeedMergerSettings& settings() const { return settings_; }
   /// Blocks 8-9 on hypotheses found by another method (a virtual robot, a rendezvous, a wider
   /// search): each is placed by the translation search within ±δ, they are ranked together and
