@@ -365,7 +365,10 @@ void ChainMerger::judgeAgainstTurns(const GridMap& from, const GridMap& to, Merg
   for (const double degrees : settings_.turned_rival_degrees) {
     turned.push_back(turnedAbout(result.T_to_from, pivot, degrees * M_PI / 180.0));
   }
-  const std::vector<PlacedFit> fits = judge_.placedFits(from, to, result.T_to_from, turned);
+  // A turn that cannot reach turned_rival_similarity times the accepted agr - dis on any shift
+  // of the search is not placed: it could not refuse.
+  const std::vector<PlacedFit> fits =
+      judge_.placedFits(from, to, result.T_to_from, turned, settings_.turned_rival_similarity);
   if (fits.empty() || fits.front().similarity <= 0) {
     return;
   }

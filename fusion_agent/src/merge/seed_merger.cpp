@@ -329,14 +329,16 @@ bool SeedMerger::cleanerRivalAmong(const GridMap& from, const GridMap& to,
 
 std::vector<PlacedFit> SeedMerger::placedFits(const GridMap& from, const GridMap& to,
                                               const GridTransform& T_to_from,
-                                              const std::vector<GridTransform>& others) {
+                                              const std::vector<GridTransform>& others,
+                                              double least_share) {
   std::vector<PlacedFit> fits;
   if (!inputRefusal(from, to).empty()) {
     return fits;
   }
   const std::shared_ptr<const seed::SearchInputs> held = searchInputsOf(from, to);
   const seed::SearchInputs& inputs = *held;
-  for (const seed::Candidate& placed : placedFacing(T_to_from, others, inputs)) {
+  for (const seed::Candidate& placed :
+       placedFacing(T_to_from, others, inputs, false, least_share)) {
     fits.push_back(
         {placed.T_to_from, placed.similarity, placed.disagreement_rate, placed.structure});
   }
@@ -382,15 +384,39 @@ void SeedMerger::dropRival(std::vector<seed::Candidate>& facing, std::size_t riv
                facing.end());
 }
 
+std::vector<GridTransform> SeedMerger::ableToReach(const seed::Candidate& placed,
+                                                   const std::vector<GridTransform>& others,
+                                                   double least_share,
+                                                   const seed::SearchInputs& inputs) const {
+  if (least_share <= 0.0 || placed.similarity <= 0 || others.empty()) {
+    return others;
+  }
+  // Every shift of the search lies within δ + 1 cells (the ±1 step after ±δ); a cell more for
+  // the rounding of the landing.
+  const seed::ReachableKnown reachable(inputs.to, settings_.translation_window_delta + 2);
+  std::vector<GridTransform> able;
+  for (const GridTransform& other : others) {
+    const double most =
+        static_cast<double>(seed::mostSimilarity(other, inputs.coarse_samples, reachable));
+    if (most / static_cast<double>(placed.similarity) >= least_share) {
+      able.push_back(other);
+    }
+  }
+  return able;
+}
+
 std::vector<seed::Candidate> SeedMerger::placedFacing(const GridTransform& T_to_from,
-                                                      const std::vector<GridTransform>& others,
+                                                      const std::vector<GridTransform>& all_others,
                                                       const seed::SearchInputs& inputs,
-                                                      bool only_as_walled) const {
+                                                      bool only_as_walled,
+                                                      double least_share) const {
   std::vector<seed::Candidate> facing = seed::searchCandidates(
       {{T_to_from, 0.0, seed::Stage::kGiven}}, 1, inputs, tables_, settings_);
   if (facing.empty()) {
     return facing;
   }
+  const std::vector<GridTransform> others =
+      ableToReach(facing.front(), all_others, least_share, inputs);
   std::vector<seed::Hypothesis> given;
   for (const GridTransform& other : others) {
     given.push_back({other, -static_cast<double>(given.size()), seed::Stage::kGiven});

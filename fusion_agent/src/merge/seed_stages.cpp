@@ -347,6 +347,36 @@ const char* stageName(Stage stage) {
   return "seed";
 }
 
+ReachableKnown::ReachableKnown(const CodeImage& to, int reach)
+    : pad_(to.pad), reach_(std::max(0, reach)) {
+  cv::Mat known;
+  cv::compare(to.classes, 0, known, cv::CMP_NE);
+  cv::dilate(known, near_known_,
+             cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * reach_ + 1, 2 * reach_ + 1)));
+}
+
+bool ReachableKnown::at(const cv::Point& cell) const {
+  const int x = cell.x + pad_;
+  const int y = cell.y + pad_;
+  if (x >= 0 && y >= 0 && x < near_known_.cols && y < near_known_.rows) {
+    return near_known_.ptr<std::uint8_t>(y)[x] != 0;
+  }
+  const int width = near_known_.cols - 2 * pad_;
+  const int height = near_known_.rows - 2 * pad_;
+  return cell.x >= -reach_ && cell.y >= -reach_ && cell.x < width + reach_ &&
+         cell.y < height + reach_;
+}
+
+long long mostSimilarity(const GridTransform& T_to_from, const std::vector<CellSample>& samples,
+                         const ReachableKnown& reachable) {
+  CellRounding rounding(T_to_from);
+  long long most = 0;
+  for (const CellSample& sample : samples) {
+    most += reachable.at(rounding.landing(sample.x, sample.y)) ? 1 : 0;
+  }
+  return most;
+}
+
 std::vector<Candidate> searchCandidates(const std::vector<Hypothesis>& hypotheses, int count,
                                         const SearchInputs& inputs, const ComparisonTables& tables,
                                         const SeedMergerSettings& settings,

@@ -151,6 +151,26 @@ struct Candidate {
   double disagreement_rate = 0.0;  ///< 1 - V over all known cells (dis / (agr + dis))
 };
 
+/// The cells of `to` (its code image) within `reach` cells (Chebyshev) of one of its known cells.
+class ReachableKnown {
+ public:
+  ReachableKnown(const CodeImage& to, int reach);
+  /// Whether a known cell of `to` lies within `reach` of `cell` (a cell of `to`, unpadded);
+  /// true off the padded image where the map's own cells lie within `reach`.
+  bool at(const cv::Point& cell) const;
+
+ private:
+  cv::Mat near_known_;  // CV_8U over the padded image: non-zero within reach of a known cell
+  int pad_ = 0;
+  int reach_ = 0;
+};
+
+/// The most agr - dis that `samples` (known cells of `from`) can reach on `to` at T_to_from
+/// shifted by whole cells within the reach of `reachable`: the samples that land within it of a
+/// known cell of `to` (each agrees at most once).
+long long mostSimilarity(const GridTransform& T_to_from, const std::vector<CellSample>& samples,
+                         const ReachableKnown& reachable);
+
 /// Block 8 on the `count` best distinct hypotheses; candidates ordered best first: those whose
 /// walls meet walls (structure ≥ min_structure_agreement) and whose overlap reaches
 /// min_overlap_cells (with `rank_by_overlap`) before the others, each group by similarity.

@@ -306,9 +306,13 @@ class SeedMerger : public MapMerger {
   /// `T_to_from` placed by the ±δ search and how it fits there, then the placements of the
   /// distinct `others`, best first (as block 9 ranks candidates); empty when the maps cannot be
   /// compared (resolutions that differ, an empty map).
+  /// With `least_share` > 0, each of `others` whose agr - dis could not reach `least_share` times
+  /// the placed transform's on any shift of the ±δ search is left out unplaced (mostSimilarity()):
+  /// a caller that weighs only fits above that share decides alike, in less time.
   std::vector<PlacedFit> placedFits(const GridMap& from, const GridMap& to,
                                     const GridTransform& T_to_from,
-                                    const std::vector<GridTransform>& others);
+                                    const std::vector<GridTransform>& others,
+                                    double least_share = 0.0);
   /// The wall alignment of an accepted `result` of another method (alignAccepted) on the pair's
   /// block 8 inputs: their wall fields, samples and code image, built once for the pair (the
   /// same figures as alignAccepted(from, to, ...) with this merger's settings).
@@ -332,13 +336,22 @@ class SeedMerger : public MapMerger {
   std::optional<seed::Refined> nextAcceptable(const std::vector<seed::Candidate>& candidates,
                                               const seed::SearchInputs& inputs,
                                               const seed::Refined& first) const;
+  /// Of the `others`, those whose agr - dis on the search samples could reach `least_share`
+  /// times `placed`'s (seed::mostSimilarity over the ±δ search's shifts); all when `least_share`
+  /// is 0 or `placed`'s is not positive.
+  std::vector<GridTransform> ableToReach(const seed::Candidate& placed,
+                                         const std::vector<GridTransform>& others,
+                                         double least_share,
+                                         const seed::SearchInputs& inputs) const;
   /// `T_to_from` and then `others`, each placed by the ±δ search (empty when T_to_from is not).
   /// `only_as_walled`: the others whose structure agreement falls below T_to_from's or below
-  /// min_structure_agreement are left out (never a cleaner rival).
+  /// min_structure_agreement are left out (never a cleaner rival); `least_share`: so are those
+  /// that cannot reach that share of T_to_from's agr - dis (ableToReach()).
   std::vector<seed::Candidate> placedFacing(const GridTransform& T_to_from,
                                             const std::vector<GridTransform>& others,
                                             const seed::SearchInputs& inputs,
-                                            bool only_as_walled = false) const;
+                                            bool only_as_walled = false,
+                                            double least_share = 0.0) const;
   /// Whether a refined rival places the centre of `from`'s known cells more than kRivalCells
   /// from where the chosen candidate does (a copy slid along a corridor settles back onto it).
   static bool settlesApart(const seed::Refined& rival, const seed::Candidate& chosen,
