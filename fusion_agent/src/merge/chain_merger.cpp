@@ -13,6 +13,7 @@
 #include "mrslam/fusion/merge/reason_text.hpp"
 #include "mrslam/fusion/merge/similarity.hpp"
 #include "mrslam/fusion/merge/truth_slide.hpp"
+#include "sampled_comparison.hpp"
 
 namespace mrslam::fusion {
 
@@ -30,34 +31,6 @@ double deviationsCleaner(const OverlapScore& there, double rate) {
   const double spread = std::sqrt(cells * rate * (1.0 - rate));
   return spread > 0.0 ? (rate * cells - static_cast<double>(there.disagreement)) / spread : 0.0;
 }
-
-// Every other row and column of `from`'s known cells (a quarter of them) against `to`'s codes,
-// to estimate the disagreement rate (1 - V) of many placements cheaply.
-class SampledComparison {
- public:
-  SampledComparison(const GridMap& from, const GridMap& to, const SimilaritySettings& classes)
-      : tables_(classes), to_(codeImage(to, 0, tables_)) {
-    for (const CellSample& known : knownCells(from, tables_)) {
-      if (known.x % 2 == 0 && known.y % 2 == 0) {
-        samples_.push_back(known);
-      }
-    }
-  }
-
-  /// 1 - V of the samples placed by T_to_from; 1 when none lands on a known cell of `to`.
-  double disagreementRate(const GridTransform& T_to_from) const {
-    return 1.0 - verificationIndex(compareAt(samples_, to_, T_to_from, tables_, false));
-  }
-  /// Whether that rate exceeds `rate` (stopping early once it must).
-  bool disagreesMoreThan(const GridTransform& T_to_from, double rate) const {
-    return disagreementRateExceeds(samples_, to_, T_to_from, tables_, rate);
-  }
-
- private:
-  ComparisonTables tables_;
-  CodeImage to_;
-  std::vector<CellSample> samples_;
-};
 
 // How far apart two transforms put `pivot` (a cell of `from`), cells.
 double cellsApartAt(const GridTransform& T_a, const GridTransform& T_b,
