@@ -21,16 +21,7 @@
 namespace mrslam::fusion {
 namespace {
 
-using merge_test::CropPair;
 using merge_test::TwoBuildings;
-
-// Case 0 of `--seed 1` (the Intel lab, 28 % overlap): the exhaustive step places it within the
-// tolerance, and the chain's checks run on it.
-const CropPair kPlacedByTheExhaustiveStep{
-    "carpin-intel.txt",
-    0,
-    {{143, 420}, 263, -0.33844691394674564, {28, 6}, {3, 35}},
-    {{169, 196}, 308, -0.19328004906128005, {34, 23}, {9, 26}}};
 
 // Negative case 200 of `--seed 1` (Carpin's robot 3 and the Intel lab): every step refuses it.
 const TwoBuildings kRefusedByEveryStep{"carpin-robot3_cast.txt",
@@ -132,7 +123,8 @@ TEST(BlockTimesTest, TheExhaustiveMergerTimesItsBlocksInTurn) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-intel.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
   ExhaustiveMerger merger;
-  const TimedResult placed = timedMerge(merger, merge_test::cut(kPlacedByTheExhaustiveStep));
+  const TimedResult placed =
+      timedMerge(merger, merge_test::cut(merge_test::kIntelCaseZeroOfSeedOne));
   EXPECT_TRUE(placed.result.accepted) << placed.result.reason;
   EXPECT_EQ(namesOf(merger.lastBlockTimes()),
             (std::vector<std::string>{"prepare", "search", "judge", "other_way", "alignment"}));
@@ -149,7 +141,8 @@ TEST(BlockTimesTest, TheDefaultChainTimesItsStepsAndItsChecks) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-intel.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
-  const TimedResult placed = timedMerge(*chain, merge_test::cut(kPlacedByTheExhaustiveStep));
+  const TimedResult placed =
+      timedMerge(*chain, merge_test::cut(merge_test::kIntelCaseZeroOfSeedOne));
   EXPECT_TRUE(placed.result.accepted) << placed.result.reason;
   EXPECT_EQ(placed.result.method, "exhaustive");
   EXPECT_EQ(namesOf(chain->lastBlockTimes()),

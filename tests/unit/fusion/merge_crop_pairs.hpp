@@ -45,6 +45,22 @@ inline MergeCase cut(const CropPair& pair) {
   return merge_case;
 }
 
+/// Case 0 of `--seed 1` (the Intel lab, 28 % overlap): the exhaustive step places it within the
+/// tolerance, and the chain's checks run on it.
+inline const CropPair kIntelCaseZeroOfSeedOne{
+    "carpin-intel.txt",
+    0,
+    {{143, 420}, 263, -0.33844691394674564, {28, 6}, {3, 35}},
+    {{169, 196}, 308, -0.19328004906128005, {34, 23}, {9, 26}}};
+
+/// A `width` × `height` grid of unknown cells, to be filled by hand.
+inline GridMap unknownMap(int width, int height) {
+  GridGeometry geometry;
+  geometry.width = width;
+  geometry.height = height;
+  return GridMap(geometry, GridMap::kUnknown);
+}
+
 /// Crops of two buildings (a negative case of `mrslam merge-cases`).
 struct TwoBuildings {
   const char* map_a;

@@ -16,20 +16,7 @@
 namespace mrslam::fusion {
 namespace {
 
-using merge_test::CropPair;
-
-// Case 0 of `--seed 1` (the Intel lab, 28 % overlap), placed within the tolerance by the chain.
-const CropPair kIntelCrops{"carpin-intel.txt",
-                           0,
-                           {{143, 420}, 263, -0.33844691394674564, {28, 6}, {3, 35}},
-                           {{169, 196}, 308, -0.19328004906128005, {34, 23}, {9, 26}}};
-
-GridMap unknownMap(int width, int height) {
-  GridGeometry geometry;
-  geometry.width = width;
-  geometry.height = height;
-  return GridMap(geometry, GridMap::kUnknown);
-}
+using merge_test::unknownMap;
 
 TEST(MergePlacedFitsTest, CellsWithinReachOfAKnownCellAreReachable) {
   GridMap map = unknownMap(20, 20);
@@ -110,7 +97,7 @@ bool holds(const std::vector<PlacedFit>& fits, const PlacedFit& fit) {
 
 TEST(MergePlacedFitsTest, ALeastShareDropsNoPlacementThatReachesIt) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-intel.txt");
-  const MergeCase merge_case = merge_test::cut(kIntelCrops);
+  const MergeCase merge_case = merge_test::cut(merge_test::kIntelCaseZeroOfSeedOne);
   SeedMerger judge;
   const Eigen::Vector2d pivot(0.5 * merge_case.a.geometry.width,
                               0.5 * merge_case.a.geometry.height);

@@ -16,20 +16,7 @@
 namespace mrslam::fusion {
 namespace {
 
-using merge_test::CropPair;
-
-// Case 0 of `--seed 1` (the Intel lab, 28 % overlap).
-const CropPair kIntelCrops{"carpin-intel.txt",
-                           0,
-                           {{143, 420}, 263, -0.33844691394674564, {28, 6}, {3, 35}},
-                           {{169, 196}, 308, -0.19328004906128005, {34, 23}, {9, 26}}};
-
-GridMap unknownMap(int width, int height) {
-  GridGeometry geometry;
-  geometry.width = width;
-  geometry.height = height;
-  return GridMap(geometry, GridMap::kUnknown);
-}
+using merge_test::unknownMap;
 
 void fill(GridMap& map, int x0, int y0, int x1, int y1, std::int8_t value) {
   for (int y = y0; y < y1; ++y) {
@@ -62,7 +49,7 @@ TEST(MergeSampledComparisonTest, TilesLandingFarFromKnownCellsAreLeftOut) {
 
 TEST(MergeSampledComparisonTest, FiguresEqualThoseOfEverySampleOnRealCrops) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-intel.txt");
-  const MergeCase merge_case = merge_test::cut(kIntelCrops);
+  const MergeCase merge_case = merge_test::cut(merge_test::kIntelCaseZeroOfSeedOne);
   const SimilaritySettings classes;
   const SampledComparison sampled(merge_case.a, merge_case.b, classes);
   const ComparisonTables tables(classes);
