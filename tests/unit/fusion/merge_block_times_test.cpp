@@ -10,6 +10,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "merge_crop_pairs.hpp"
@@ -81,8 +82,21 @@ TEST(BlockTimesTest, ATimedBlockReturnsItsResultAndAddsItsTime) {
   EXPECT_EQ(runs, 1);
   EXPECT_EQ(namesOf(times), (std::vector<std::string>{"answer", "void"}));
   expectWithinTheMerge(times, 1000.0);
+}
+
+TEST(BlockTimesTest, AClockLapIsTheTimeSinceTheLastLap) {
+  BlockClock outer;
   BlockClock clock;
-  EXPECT_GE(clock.lapMs(), 0.0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const double first = clock.lapMs();
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const double second = clock.lapMs();
+  const double both = outer.lapMs();
+  // sleep_for blocks at least as long on the steady clock; a lap that did not restart would
+  // count the first sleep twice.
+  EXPECT_GE(first, 20.0);
+  EXPECT_GE(second, 20.0);
+  EXPECT_LE(first + second, both + 1e-9) << "each lap starts where the last one ended";
 }
 
 /// A step with a fixed answer that reports `blocks` as its last merge's.
