@@ -84,7 +84,13 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
     inputs.pivot_from += Eigen::Vector2d(sample.x, sample.y);
   }
   inputs.pivot_from /= std::max<double>(1.0, static_cast<double>(inputs.all_samples.size()));
-  inputs.to = codeImage(to, settings_.translation_window_delta + 2, tables_);
+  // Both code images have the pad the shifted searches read (from's is read by the structure
+  // checks the other way round, where cells in a pad are unknown and count as off the image), so
+  // the other way's serve this way swapped.
+  const int pad = settings_.translation_window_delta + 2;
+  const bool images_reversed = reversed != nullptr && reversed->to.pad == pad &&
+                               reversed->from.pad == pad && !reversed->from.codes.empty();
+  inputs.to = images_reversed ? reversed->from : codeImage(to, pad, tables_);
   inputs.entropy_from = reversed != nullptr ? reversed->entropy_to : mapEntropy(from, tables_);
   inputs.entropy_to = reversed != nullptr ? reversed->entropy_from : mapEntropy(to, tables_);
   if (reversed != nullptr && reversed->walls_from && reversed->walls_to) {
@@ -96,9 +102,11 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
     inputs.walls_to =
         std::make_shared<WallField>(to, settings_.similarity, settings_.wall_alignment);
   }
-  inputs.from = codeImage(from, 1, tables_);
-  inputs.wall_balance_to = wallBalanceImage(inputs.to);
-  inputs.wall_balance_from = wallBalanceImage(inputs.from);
+  inputs.from = images_reversed ? reversed->to : codeImage(from, pad, tables_);
+  inputs.wall_balance_to =
+      images_reversed ? reversed->wall_balance_from : wallBalanceImage(inputs.to);
+  inputs.wall_balance_from =
+      images_reversed ? reversed->wall_balance_to : wallBalanceImage(inputs.from);
   for (const CellSample& cell : inputs.all_to) {
     if (tables_.isOccupied(cell.code)) {
       inputs.occupied_to.push_back(cell);

@@ -37,12 +37,16 @@ long long balanceOf(const StructureAgreement& sums) {
   return sums.near - sums.far;
 }
 
-// Both directions at every shift within ±reach, each against its own structureAgreement().
+// Both directions at every shift within ±reach, each against its own structureAgreement() on
+// `from` padded by one cell. The balances the other way round read `from` padded by
+// `from_pad` (the search inputs pad both maps alike): cells in a pad are unknown and count as
+// nothing, as cells off the image do.
 void expectEqualToOneCallPerShift(const GridMap& from, const GridMap& to,
-                                  const GridTransform& T_to_from, int reach) {
+                                  const GridTransform& T_to_from, int reach, int from_pad) {
   const ComparisonTables tables{SimilaritySettings{}};
   const CodeImage image_to = codeImage(to, reach + 2, tables);
-  const CodeImage image_from = codeImage(from, 1, tables);
+  const CodeImage one_cell_pad = codeImage(from, 1, tables);
+  const CodeImage image_from = codeImage(from, from_pad, tables);
   const std::vector<CellSample> walls_from = wallsOf(from, tables);
   const std::vector<CellSample> walls_to = wallsOf(to, tables);
   const std::vector<long long> forward = wallBalancesAfterShifts(
@@ -60,9 +64,14 @@ void expectEqualToOneCallPerShift(const GridMap& from, const GridMap& to,
       const std::size_t k = static_cast<std::size_t>((dy + reach) * side + dx + reach);
       const StructureAgreement onto_to = structureAgreement(walls_from, image_to, shifted, tables);
       EXPECT_EQ(forward[k], balanceOf(onto_to)) << dx << ", " << dy;
-      EXPECT_EQ(backward[k],
-                balanceOf(structureAgreement(walls_to, image_from, shifted.inverse(), tables)))
-          << dx << ", " << dy;
+      const StructureAgreement onto_from =
+          structureAgreement(walls_to, one_cell_pad, shifted.inverse(), tables);
+      EXPECT_EQ(backward[k], balanceOf(onto_from)) << dx << ", " << dy;
+      const StructureAgreement padded =
+          structureAgreement(walls_to, image_from, shifted.inverse(), tables);
+      EXPECT_EQ(padded.near, onto_from.near) << dx << ", " << dy;
+      EXPECT_EQ(padded.far, onto_from.far) << dx << ", " << dy;
+      EXPECT_EQ(padded.frontier, onto_from.frontier) << dx << ", " << dy;
       walls_met += onto_to.near;
     }
   }
@@ -139,10 +148,14 @@ TEST(MergeWallBalanceTest, HandBuiltRoomsAtEveryShiftEqualOneCallEach) {
   GridTransform T;
   T.theta_rad = 0.05;
   T.t_cells = Eigen::Vector2d(1.37, -0.62);
-  expectEqualToOneCallPerShift(map, map, T, 6);
+  for (const int from_pad : {1, 8}) {
+    expectEqualToOneCallPerShift(map, map, T, 6, from_pad);
+  }
   T.theta_rad = -2.9;  // turned far: most walls land off the map at most shifts
   T.t_cells = Eigen::Vector2d(61.2, 35.8);
-  expectEqualToOneCallPerShift(map, map, T, 4);
+  for (const int from_pad : {1, 6}) {
+    expectEqualToOneCallPerShift(map, map, T, 4, from_pad);
+  }
 }
 
 TEST(MergeWallBalanceTest, RealCropsAtEveryShiftEqualOneCallEach) {
@@ -155,7 +168,9 @@ TEST(MergeWallBalanceTest, RealCropsAtEveryShiftEqualOneCallEach) {
   GridTransform near_truth = merge_case.T_b_a;  // a candidate's error: a little turned and slid
   near_truth.theta_rad += 0.013;
   near_truth.t_cells += Eigen::Vector2d(2.31, -1.74);
-  expectEqualToOneCallPerShift(merge_case.a, merge_case.b, near_truth, 6);
+  for (const int from_pad : {1, 8}) {
+    expectEqualToOneCallPerShift(merge_case.a, merge_case.b, near_truth, 6, from_pad);
+  }
 }
 
 }  // namespace
