@@ -622,8 +622,8 @@ std::vector<double> radonProfile(const GridMap& map, const SimilaritySettings& c
   if (walls.empty()) {
     return {};
   }
-  return radonSpectrum(radonTransform(walls, occupied.size(), radon.angle_step_rad),
-                       radon.profile_highpass_rad);
+  return radonSpectrumOfCells(walls, occupied.size(), radon.angle_step_rad,
+                              radon.profile_highpass_rad);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 
 namespace mrslam::fusion {
@@ -57,27 +58,45 @@ std::vector<double> strongestPeaks(const std::vector<double>& values, int count,
 
 }  // namespace
 
-cv::Mat radonTransform(const std::vector<cv::Point>& cells, cv::Size size, double angle_step_rad) {
-  const int angles = angleCount(angle_step_rad);
-  const double centre_x = 0.5 * (size.width - 1);
-  const double centre_y = 0.5 * (size.height - 1);
-  const int half = static_cast<int>(std::ceil(std::hypot(centre_x, centre_y))) + 1;
-  cv::Mat radon(angles, 2 * half + 2, CV_32F, cv::Scalar(0.0f));
+namespace {
+
+/// The cells about the centre of an image of `size`, and the ρ bins' offset `half`.
+struct CentredCells {
   std::vector<float> xs;
   std::vector<float> ys;
-  for (const cv::Point& cell : cells) {
-    xs.push_back(static_cast<float>(cell.x - centre_x));
-    ys.push_back(static_cast<float>(cell.y - centre_y));
+  int half = 0;
+  CentredCells(const std::vector<cv::Point>& cells, cv::Size size) {
+    const double centre_x = 0.5 * (size.width - 1);
+    const double centre_y = 0.5 * (size.height - 1);
+    half = static_cast<int>(std::ceil(std::hypot(centre_x, centre_y))) + 1;
+    for (const cv::Point& cell : cells) {
+      xs.push_back(static_cast<float>(cell.x - centre_x));
+      ys.push_back(static_cast<float>(cell.y - centre_y));
+    }
   }
-  std::vector<int> bins(xs.size());
-  for (int j = 0; j < angles; ++j) {
+  int binCount() const { return 2 * half + 2; }
+  /// Each cell's ρ bin at angle j of `angles`.
+  void binsAt(int j, int angles, std::vector<int>& bins) const {
     const auto c = static_cast<float>(std::cos(j * M_PI / angles));
     const auto s = static_cast<float>(std::sin(j * M_PI / angles));
-    // ρ + half + ½ ≥ 0 by the choice of `half`: truncation rounds to the nearest bin. The bins
-    // first (a loop the compiler vectorises), then the counts.
+    // ρ + half + ½ ≥ 0 by the choice of `half`: truncation rounds to the nearest bin. A loop
+    // the compiler vectorises.
+    bins.resize(xs.size());
     for (std::size_t i = 0; i < xs.size(); ++i) {
       bins[i] = static_cast<int>(xs[i] * c + ys[i] * s + static_cast<float>(half) + 0.5f);
     }
+  }
+};
+
+}  // namespace
+
+cv::Mat radonTransform(const std::vector<cv::Point>& cells, cv::Size size, double angle_step_rad) {
+  const int angles = angleCount(angle_step_rad);
+  const CentredCells centred(cells, size);
+  cv::Mat radon(angles, centred.binCount(), CV_32F, cv::Scalar(0.0f));
+  std::vector<int> bins;
+  for (int j = 0; j < angles; ++j) {
+    centred.binsAt(j, angles, bins);
     auto* row = radon.ptr<float>(j);
     for (const int bin : bins) {
       row[bin] += 1.0f;
@@ -106,13 +125,12 @@ std::vector<double> rowEnergies(const cv::Mat& radon) {
   return energy;
 }
 
-}  // namespace
-
-std::vector<double> radonSpectrum(const cv::Mat& radon, double highpass_rad) {
-  const std::vector<double> energy = rowEnergies(radon);
-  const int reach = static_cast<int>(std::lround(highpass_rad / (M_PI / radon.rows)));
+// The high-passed, normalised profile of the angles' energies.
+std::vector<double> spectrumOfEnergies(const std::vector<double>& energy, double highpass_rad) {
+  const int angles = static_cast<int>(energy.size());
+  const int reach = static_cast<int>(std::lround(highpass_rad / (M_PI / angles)));
   std::vector<double> spectrum(energy.size(), 0.0);
-  for (int j = 0; j < radon.rows; ++j) {
+  for (int j = 0; j < angles; ++j) {
     double background = 0.0;
     for (int i = j - reach; i <= j + reach; ++i) {
       background += at(energy, i);
@@ -120,19 +138,48 @@ std::vector<double> radonSpectrum(const cv::Mat& radon, double highpass_rad) {
     spectrum[static_cast<std::size_t>(j)] = at(energy, j) - background / (2 * reach + 1);
   }
   const double mean =
-      std::accumulate(spectrum.begin(), spectrum.end(), 0.0) / static_cast<double>(radon.rows);
+      std::accumulate(spectrum.begin(), spectrum.end(), 0.0) / static_cast<double>(angles);
   double variance = 0.0;
   for (double& value : spectrum) {
     value -= mean;
     variance += value * value;
   }
-  const double deviation = std::sqrt(variance / static_cast<double>(radon.rows));
+  const double deviation = std::sqrt(variance / static_cast<double>(angles));
   if (deviation > 0.0) {
     for (double& value : spectrum) {
       value /= deviation;
     }
   }
   return spectrum;
+}
+
+}  // namespace
+
+std::vector<double> radonSpectrum(const cv::Mat& radon, double highpass_rad) {
+  return spectrumOfEnergies(rowEnergies(radon), highpass_rad);
+}
+
+std::vector<double> radonSpectrumOfCells(const std::vector<cv::Point>& cells, cv::Size size,
+                                         double angle_step_rad, double highpass_rad) {
+  const int angles = angleCount(angle_step_rad);
+  const CentredCells centred(cells, size);
+  std::vector<double> energy(static_cast<std::size_t>(angles), 0.0);
+  std::vector<int> bins;
+  std::vector<float> counts(static_cast<std::size_t>(centred.binCount()));
+  for (int j = 0; j < angles; ++j) {
+    centred.binsAt(j, angles, bins);
+    std::fill(counts.begin(), counts.end(), 0.0f);
+    for (const int bin : bins) {
+      counts[static_cast<std::size_t>(bin)] += 1.0f;
+    }
+    // As rowEnergies() sums a row of the image: the same values in the same order.
+    double sum = 0.0;
+    for (const float count : counts) {
+      sum += static_cast<double>(count) * count;
+    }
+    energy[static_cast<std::size_t>(j)] = sum;
+  }
+  return spectrumOfEnergies(energy, highpass_rad);
 }
 
 std::vector<double> spectrumCorrelation(const std::vector<double>& spectrum_from,

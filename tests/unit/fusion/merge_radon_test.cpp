@@ -120,5 +120,29 @@ TEST(MergeRadonTest, CorrelationOfAProfileWithItselfPeaksAtZero) {
   EXPECT_NEAR(correlation[0], 1.0, 1e-9);  // normalised profiles
 }
 
+// The profile made without the image equals the image's, value for value, on several turns,
+// step sizes and image sizes (cells near the image's corners included).
+TEST(MergeRadonTest, TheProfileOfCellsEqualsTheProfileOfTheirImage) {
+  for (const int size : {200, 137}) {
+    for (const double theta : {0.0, 0.3, 1.2}) {
+      std::vector<cv::Point> cells = drawTurned(rooms(), theta, size);
+      cells.emplace_back(0, 0);
+      cells.emplace_back(size - 1, size - 1);
+      for (const double step : {kDegree, 0.7 * kDegree}) {
+        const cv::Size image(size, size);
+        const std::vector<double> of_image =
+            radonSpectrum(radonTransform(cells, image, step), 5.0 * kDegree);
+        const std::vector<double> of_cells =
+            radonSpectrumOfCells(cells, image, step, 5.0 * kDegree);
+        ASSERT_EQ(of_cells.size(), of_image.size());
+        for (std::size_t j = 0; j < of_image.size(); ++j) {
+          EXPECT_EQ(of_cells[j], of_image[j])
+              << "size " << size << ", turn " << theta << ", angle " << j;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mrslam::fusion

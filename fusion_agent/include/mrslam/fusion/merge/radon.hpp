@@ -47,6 +47,12 @@ RadonPeak radonPeak(const cv::Mat& radon);
 /// Block 7.2: the high-passed, normalised angular energy profile S(φ) of a Radon image.
 std::vector<double> radonSpectrum(const cv::Mat& radon, double highpass_rad);
 
+/// The same profile of `cells` without the Radon image: each angle's counts are made in one row
+/// and its energy Σ_ρ R(φ, ρ)² taken at once; equal to
+/// radonSpectrum(radonTransform(cells, size, angle_step_rad), highpass_rad).
+std::vector<double> radonSpectrumOfCells(const std::vector<cv::Point>& cells, cv::Size size,
+                                         double angle_step_rad, double highpass_rad);
+
 /// Block 7.3: C(θ_j) for θ_j = j · π / size, j = 0 … size-1 (profiles of equal size).
 std::vector<double> spectrumCorrelation(const std::vector<double>& spectrum_from,
                                         const std::vector<double>& spectrum_to);

@@ -1,0 +1,106 @@
+// The Radon angular profile of a 400 × 400 crop's walls (the exhaustive search's suggested turns,
+// radon.hpp), on one core: through the Radon image (radonTransform, then radonSpectrum) against
+// radonSpectrumOfCells, which counts each angle in one row and keeps no image. Both give the same
+// profile (`same_share` counts the crops where every value is equal); `time_ratio` is the second's
+// total time over the first's.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <numeric>
+#include <opencv2/core.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "../tests/unit/fusion/merge_test_maps.hpp"
+#include "mrslam/fusion/merge/edges.hpp"
+#include "mrslam/fusion/merge/radon.hpp"
+#include "mrslam/fusion/merge/similarity.hpp"
+
+namespace mrslam::fusion {
+namespace {
+
+constexpr int kCrops = 12;
+constexpr int kSize = 400;
+
+/// The wall cells of the turned crops of the merge benchmark's cases (each case's `from`).
+std::vector<std::vector<cv::Point>> wallsOfCrops(const std::string& file) {
+  const std::string path = std::string(MRSLAM_DATA_DIR) + "/maps/" + file;
+  std::vector<std::vector<cv::Point>> crops;
+  if (!std::filesystem::exists(path)) {
+    return crops;
+  }
+  const GridMap map = merge_test::loadMap(path);
+  const SimilaritySettings classes;
+  std::mt19937 random(7);
+  while (static_cast<int>(crops.size()) < kCrops) {
+    const merge_test::KnownCase next = merge_test::randomCase(map, kSize, 0.4, 1.01, random);
+    if (next.overlap > 0.0) {
+      crops.push_back(nonZeroCells(occupiedImage(next.from, classes.occupied_threshold)));
+    }
+  }
+  return crops;
+}
+
+double medianOf(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+void BM_RadonProfile400(benchmark::State& state, const char* file) {
+  cv::setNumThreads(1);
+  const std::vector<std::vector<cv::Point>> crops = wallsOfCrops(file);
+  if (crops.empty()) {
+    state.SkipWithError("needs ../shared/data/maps");
+    return;
+  }
+  const RadonSettings radon;
+  const cv::Size size(kSize, kSize);
+  std::vector<double> image_ms;
+  std::vector<double> cells_ms;
+  int same = 0;
+  std::size_t next = 0;
+  double walls = 0.0;
+  for (auto _ : state) {
+    const std::vector<cv::Point>& cells = crops[next++ % crops.size()];
+    walls += static_cast<double>(cells.size());
+    const auto timed = [](std::vector<double>& times, const auto& profile) {
+      const auto start = std::chrono::steady_clock::now();
+      std::vector<double> result = profile();
+      times.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count());
+      return result;
+    };
+    const std::vector<double> by_image = timed(image_ms, [&] {
+      return radonSpectrum(radonTransform(cells, size, radon.angle_step_rad),
+                           radon.profile_highpass_rad);
+    });
+    const std::vector<double> by_cells = timed(cells_ms, [&] {
+      return radonSpectrumOfCells(cells, size, radon.angle_step_rad, radon.profile_highpass_rad);
+    });
+    same += by_image == by_cells ? 1 : 0;
+    benchmark::DoNotOptimize(by_cells.data());
+  }
+  const auto total = [](const std::vector<double>& times) {
+    return std::accumulate(times.begin(), times.end(), 0.0);
+  };
+  state.counters["image_median_ms"] = medianOf(image_ms);
+  state.counters["cells_median_ms"] = medianOf(cells_ms);
+  state.counters["time_ratio"] = total(cells_ms) / total(image_ms);
+  state.counters["same_share"] = static_cast<double>(same) / static_cast<double>(image_ms.size());
+  state.counters["walls"] = walls / static_cast<double>(image_ms.size());
+}
+BENCHMARK_CAPTURE(BM_RadonProfile400, intel, "carpin-intel.txt")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(4 * kCrops);
+BENCHMARK_CAPTURE(BM_RadonProfile400, freiburg_aces, "freiburg-aces.pgm")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(4 * kCrops);
+
+}  // namespace
+}  // namespace mrslam::fusion
+
+BENCHMARK_MAIN();
