@@ -11,11 +11,10 @@ namespace {
 
 /// The grid's walls: 255 on a wall, else 0.
 cv::Mat wallImage(const SearchGrid& grid) {
-  cv::Mat walls(grid.height, grid.width, CV_8U);
-  for (int y = 0; y < grid.height; ++y) {
-    for (int x = 0; x < grid.width; ++x) {
-      walls.at<std::uint8_t>(y, x) = grid.at(x, y) == GridClass::kWall ? 255 : 0;
-    }
+  cv::Mat walls(grid.height, grid.width, CV_8U);  // continuous: one row after the other
+  std::uint8_t* const out = walls.ptr<std::uint8_t>(0);
+  for (std::size_t i = 0; i < grid.classes.size(); ++i) {
+    out[i] = grid.classes[i] == GridClass::kWall ? 255 : 0;
   }
   return walls;
 }
@@ -76,12 +75,14 @@ std::vector<Eigen::Vector2d> cellsOf(const SearchGrid& grid, GridClass wanted, i
       continue;
     }
     markWanted(grid, wanted, near, y, marks);
+    std::size_t next_pick = sample.size() * all / kept;  // the wanted cell picked next
     for (int x = 0; x < grid.width && sample.size() < kept; ++x) {
       if (marks[static_cast<std::size_t>(x)] == 0) {
         continue;
       }
-      if (seen == sample.size() * all / kept) {
+      if (seen == next_pick) {
         sample.emplace_back(x, y);
+        next_pick = sample.size() * all / kept;
       }
       ++seen;
     }
