@@ -6,7 +6,8 @@
 // other mergers of the registry (the exhaustive search, the chain) on the same cases, searching
 // every rotation or only those near the turns the walls suggest (`rotation_peaks`);
 // BM_MergeBlocks400 the default merger's median and each of its blocks' share of the time
-// (MapMerger::lastBlockTimes); BM_ExhaustiveSearch400 the exhaustive search alone, with and without
+// (MapMerger::lastBlockTimes), BM_RefusalBlocks400 the same for pairs from two buildings, which
+// it refuses; BM_ExhaustiveSearch400 the exhaustive search alone, with and without
 // its early stop, and near the suggested turns. BM_MergeWholeBuilding: two turned 700-cell windows
 // of the ACES map (crops of about 1000 cells a side, which the exhaustive search takes on larger
 // cells, max_grid_cells).
@@ -189,6 +190,42 @@ BENCHMARK_CAPTURE(BM_MergeBlocks400, intel, "carpin-intel.txt")
 BENCHMARK_CAPTURE(BM_MergeBlocks400, freiburg_aces, "freiburg-aces.pgm")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2 * kCases);
+
+/// The same for refusals: the default merger on pairs from two buildings (each turned Intel crop
+/// of the cases above onto an ACES crop), its median, the share it accepted (wrongly) and each
+/// block's share of the time. A refusal runs every step of the chain.
+void BM_RefusalBlocks400(benchmark::State& state) {
+  cv::setNumThreads(1);  // one core
+  const std::vector<merge_test::KnownCase> intel = cases("carpin-intel.txt");
+  const std::vector<merge_test::KnownCase> aces = cases("freiburg-aces.pgm");
+  if (intel.empty() || aces.empty()) {
+    state.SkipWithError("needs ../shared/data/maps");
+    return;
+  }
+  const std::unique_ptr<MapMerger> merger = makeMerger("chain");
+  std::vector<double> times;
+  BlockTimes total;
+  int accepted = 0;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const std::size_t k = next++;
+    const MergeResult result =
+        timedMerge(*merger, intel[k % intel.size()].from, aces[(k + 5) % aces.size()].to, times);
+    accepted += result.accepted ? 1 : 0;
+    for (const BlockTime& block : merger->lastBlockTimes()) {
+      addBlockTime(total, block.name, block.ms);
+    }
+  }
+  const double sum = std::accumulate(times.begin(), times.end(), 0.0);
+  state.counters["median_ms"] = percentileOf(times, 0.5);
+  state.counters["accepted_share"] =
+      static_cast<double>(accepted) / static_cast<double>(times.size());
+  for (const BlockTime& block : total) {
+    state.counters[block.name] = block.ms / sum;
+  }
+  state.counters["unaccounted"] = 1.0 - totalMs(total) / sum;
+}
+BENCHMARK(BM_RefusalBlocks400)->Unit(benchmark::kMillisecond)->Iterations(kCases);
 
 /// The exhaustive search alone (exhaustive_search.hpp, default settings) on the same cases, each
 /// searched three times in turn: summing every point of every node, and stopping a node's sums
