@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "../tests/unit/fusion/merge_test_maps.hpp"
+#include "crop_cases.hpp"
 #include "mrslam/common/heap.hpp"
 #include "mrslam/fusion/merge/exhaustive_search.hpp"
 #include "mrslam/fusion/merge/feature_merger.hpp"
@@ -34,31 +34,10 @@
 namespace mrslam::fusion {
 namespace {
 
-constexpr int kCases = 12;
-constexpr int kSize = 400;
-
-std::vector<merge_test::KnownCase> cases(const std::string& file) {
-  const std::string path = std::string(MRSLAM_DATA_DIR) + "/maps/" + file;
-  std::vector<merge_test::KnownCase> known;
-  if (!std::filesystem::exists(path)) {
-    return known;
-  }
-  const GridMap map = merge_test::loadMap(path);
-  std::mt19937 random(7);
-  while (static_cast<int>(known.size()) < kCases) {
-    merge_test::KnownCase next = merge_test::randomCase(map, kSize, 0.4, 1.01, random);
-    if (next.overlap > 0.0) {
-      known.push_back(std::move(next));
-    }
-  }
-  return known;
-}
-
-double percentileOf(std::vector<double> values, double fraction) {
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
-  return values[rank];
-}
+using bench::cases;
+using bench::kCases;
+using bench::kSize;
+using bench::percentileOf;
 
 /// One merge, its wall-clock time appended to `times_ms`.
 MergeResult timedMerge(MapMerger& merger, const GridMap& from, const GridMap& to,
@@ -157,6 +136,18 @@ BENCHMARK_CAPTURE(BM_Merge400, virtual_unchecked_intel, "virtual", "carpin-intel
     ->Unit(benchmark::kMillisecond)
     ->Iterations(kCases);
 
+/// The median of `times` and each block of `total` as its share of their sum ("unaccounted": the
+/// share no block holds).
+void reportBlockShares(benchmark::State& state, const std::vector<double>& times,
+                       const BlockTimes& total) {
+  const double sum = std::accumulate(times.begin(), times.end(), 0.0);
+  state.counters["median_ms"] = percentileOf(times, 0.5);
+  for (const BlockTime& block : total) {
+    state.counters[block.name] = block.ms / sum;
+  }
+  state.counters["unaccounted"] = 1.0 - totalMs(total) / sum;
+}
+
 /// The default merger (the chain, every setting its default) on the same cases: the median and
 /// each block's share of the merges' total time (MapMerger::lastBlockTimes: the exhaustive
 /// step's preparation, search, judge, the other way's judge and the alignment, the chain's
@@ -175,14 +166,9 @@ void BM_MergeBlocks400(benchmark::State& state, const char* file) {
                   })) {
     return;
   }
-  const double sum = std::accumulate(times.begin(), times.end(), 0.0);
-  state.counters["median_ms"] = percentileOf(times, 0.5);
+  reportBlockShares(state, times, total);
   state.counters["correct_share"] =
       static_cast<double>(correct) / static_cast<double>(times.size());
-  for (const BlockTime& block : total) {
-    state.counters[block.name] = block.ms / sum;
-  }
-  state.counters["unaccounted"] = 1.0 - totalMs(total) / sum;
 }
 BENCHMARK_CAPTURE(BM_MergeBlocks400, intel, "carpin-intel.txt")
     ->Unit(benchmark::kMillisecond)
@@ -216,14 +202,9 @@ void BM_RefusalBlocks400(benchmark::State& state) {
       addBlockTime(total, block.name, block.ms);
     }
   }
-  const double sum = std::accumulate(times.begin(), times.end(), 0.0);
-  state.counters["median_ms"] = percentileOf(times, 0.5);
+  reportBlockShares(state, times, total);
   state.counters["accepted_share"] =
       static_cast<double>(accepted) / static_cast<double>(times.size());
-  for (const BlockTime& block : total) {
-    state.counters[block.name] = block.ms / sum;
-  }
-  state.counters["unaccounted"] = 1.0 - totalMs(total) / sum;
 }
 BENCHMARK(BM_RefusalBlocks400)->Unit(benchmark::kMillisecond)->Iterations(kCases);
 

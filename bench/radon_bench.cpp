@@ -5,16 +5,13 @@
 // total time over the first's.
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
 #include <chrono>
-#include <filesystem>
 #include <numeric>
 #include <opencv2/core.hpp>
-#include <random>
 #include <string>
 #include <vector>
 
-#include "../tests/unit/fusion/merge_test_maps.hpp"
+#include "crop_cases.hpp"
 #include "mrslam/fusion/merge/edges.hpp"
 #include "mrslam/fusion/merge/radon.hpp"
 #include "mrslam/fusion/merge/similarity.hpp"
@@ -22,31 +19,18 @@
 namespace mrslam::fusion {
 namespace {
 
-constexpr int kCrops = 12;
-constexpr int kSize = 400;
+using bench::kCases;
+using bench::kSize;
+using bench::percentileOf;
 
 /// The wall cells of the turned crops of the merge benchmark's cases (each case's `from`).
 std::vector<std::vector<cv::Point>> wallsOfCrops(const std::string& file) {
-  const std::string path = std::string(MRSLAM_DATA_DIR) + "/maps/" + file;
-  std::vector<std::vector<cv::Point>> crops;
-  if (!std::filesystem::exists(path)) {
-    return crops;
-  }
-  const GridMap map = merge_test::loadMap(path);
   const SimilaritySettings classes;
-  std::mt19937 random(7);
-  while (static_cast<int>(crops.size()) < kCrops) {
-    const merge_test::KnownCase next = merge_test::randomCase(map, kSize, 0.4, 1.01, random);
-    if (next.overlap > 0.0) {
-      crops.push_back(nonZeroCells(occupiedImage(next.from, classes.occupied_threshold)));
-    }
+  std::vector<std::vector<cv::Point>> crops;
+  for (const merge_test::KnownCase& known : bench::cases(file)) {
+    crops.push_back(nonZeroCells(occupiedImage(known.from, classes.occupied_threshold)));
   }
   return crops;
-}
-
-double medianOf(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
 }
 
 void BM_RadonProfile400(benchmark::State& state, const char* file) {
@@ -87,18 +71,18 @@ void BM_RadonProfile400(benchmark::State& state, const char* file) {
   const auto total = [](const std::vector<double>& times) {
     return std::accumulate(times.begin(), times.end(), 0.0);
   };
-  state.counters["image_median_ms"] = medianOf(image_ms);
-  state.counters["cells_median_ms"] = medianOf(cells_ms);
+  state.counters["image_median_ms"] = percentileOf(image_ms, 0.5);
+  state.counters["cells_median_ms"] = percentileOf(cells_ms, 0.5);
   state.counters["time_ratio"] = total(cells_ms) / total(image_ms);
   state.counters["same_share"] = static_cast<double>(same) / static_cast<double>(image_ms.size());
   state.counters["walls"] = walls / static_cast<double>(image_ms.size());
 }
 BENCHMARK_CAPTURE(BM_RadonProfile400, intel, "carpin-intel.txt")
     ->Unit(benchmark::kMillisecond)
-    ->Iterations(4 * kCrops);
+    ->Iterations(4 * kCases);
 BENCHMARK_CAPTURE(BM_RadonProfile400, freiburg_aces, "freiburg-aces.pgm")
     ->Unit(benchmark::kMillisecond)
-    ->Iterations(4 * kCrops);
+    ->Iterations(4 * kCases);
 
 }  // namespace
 }  // namespace mrslam::fusion

@@ -172,9 +172,6 @@ bool ExhaustiveMerger::ownPeakNeeded() const {
 void ExhaustiveMerger::applyOwnPeakChecks(const GridMap& from, const GridMap& to,
                                           const ExhaustiveScore& score,
                                           const Eigen::Vector2d& pivot, MergeResult& result) const {
-  if (!ownPeakNeeded()) {
-    return;
-  }
   constexpr int kTurnSteps = 8;
   const ExhaustiveHypothesis best =
       score.bestNear(result.T_to_from, settings_.own_score_turn_deg * M_PI / 180.0, kTurnSteps,

@@ -88,8 +88,8 @@ seed::SearchInputs SeedMerger::searchInputs(const GridMap& from, const GridMap& 
   // checks the other way round, where cells in a pad are unknown and count as off the image), so
   // the other way's serve this way swapped.
   const int pad = settings_.translation_window_delta + 2;
-  const bool images_reversed = reversed != nullptr && reversed->to.pad == pad &&
-                               reversed->from.pad == pad && !reversed->from.codes.empty();
+  const bool images_reversed =
+      reversed != nullptr && reversed->to.pad == pad && reversed->from.pad == pad;
   inputs.to = images_reversed ? reversed->from : codeImage(to, pad, tables_);
   inputs.entropy_from = reversed != nullptr ? reversed->entropy_to : mapEntropy(from, tables_);
   inputs.entropy_to = reversed != nullptr ? reversed->entropy_from : mapEntropy(to, tables_);

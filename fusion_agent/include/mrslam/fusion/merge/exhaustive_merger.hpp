@@ -89,7 +89,8 @@ class ExhaustiveMerger : public MapMerger {
   bool ownPeakNeeded() const;
   /// The search's own checks near the accepted transform: with check_own_score, refuses `result`
   /// unless `score` (both ways) peaks within the agreement of it; with max_turn_ambiguity below 1,
-  /// unless a turn scores clearly less there; with return_own_peak, returns that peak.
+  /// unless a turn scores clearly less there; with return_own_peak, returns that peak. Called
+  /// only when ownPeakNeeded().
   void applyOwnPeakChecks(const GridMap& from, const GridMap& to, const ExhaustiveScore& score,
                           const Eigen::Vector2d& pivot, MergeResult& result) const;
   /// Refuses `result` when `score` turned by ±ambiguity_turn_deg about `centre` (`from`'s known
