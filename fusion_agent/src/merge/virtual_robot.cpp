@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "mrslam/common/se2.hpp"
+#include "mrslam/fusion/merge/hit_costs.hpp"
 #include "mrslam/fusion/merge/similarity.hpp"
 #include "mrslam/fusion/merge/skeleton.hpp"
 
@@ -62,43 +62,10 @@ SE2 asSe2(const CellPose& pose) {
   return SE2(pose.cell.x(), pose.cell.y(), pose.heading_rad);
 }
 
-/// Distance (cells) from every cell of `map` to its nearest wall cell.
-cv::Mat wallDistance(const GridMap& map) {
-  cv::Mat not_wall(map.geometry.height, map.geometry.width, CV_8U, cv::Scalar(255));
-  for (int y = 0; y < map.geometry.height; ++y) {
-    for (int x = 0; x < map.geometry.width; ++x) {
-      if (map.at(x, y) >= kOccupiedThreshold) {
-        not_wall.at<std::uint8_t>(y, x) = 0;
-      }
-    }
-  }
-  cv::Mat distance;
-  cv::distanceTransform(not_wall, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-  return distance;
-}
-
 struct Particle {
   SE2 pose;  ///< in `to`'s cells
   double log_weight = 0.0;
 };
-
-/// Log-likelihood of a scan (points in the robot frame, cells) from `pose` in the field.
-double scanLogLikelihood(const cv::Mat& field, const std::vector<Eigen::Vector2d>& points,
-                         const SE2& pose, double sigma) {
-  const double cap = kFieldCapSigmas * sigma;
-  double sum = 0.0;
-  for (const Eigen::Vector2d& point : points) {
-    const Eigen::Vector2d p = pose * point;
-    const int x = roundToInt(p.x());
-    const int y = roundToInt(p.y());
-    double d = cap;
-    if (x >= 0 && y >= 0 && x < field.cols && y < field.rows) {
-      d = std::min(cap, static_cast<double>(field.at<float>(y, x)));
-    }
-    sum -= d * d / (2.0 * sigma * sigma);
-  }
-  return sum;
-}
 
 std::vector<Eigen::Vector2d> thinned(const std::vector<Eigen::Vector2d>& points) {
   if (points.size() <= kScanPointsUsed) {
@@ -238,7 +205,8 @@ std::vector<GridTransform> VirtualRobotMerger::hypotheses(const GridMap& from,
   if (starts.empty() || places_to.empty()) {
     return found;
   }
-  const cv::Mat field = wallDistance(to);
+  const HitCosts costs(wallDistance(to, kOccupiedThreshold),
+                       kFieldCapSigmas * settings_.hit_sigma_cells, settings_.hit_sigma_cells);
   std::mt19937_64 rng(settings_.seed);
   std::uniform_int_distribution<std::size_t> pick_start(0, starts.size() - 1);
   std::uniform_int_distribution<std::size_t> pick_place(0, places_to.size() - 1);
@@ -268,8 +236,7 @@ std::vector<GridTransform> VirtualRobotMerger::hypotheses(const GridMap& from,
       }
       const std::vector<Eigen::Vector2d> scan = thinned(virtualScan(from, walk[k], settings_));
       for (Particle& particle : particles) {
-        particle.log_weight +=
-            scanLogLikelihood(field, scan, particle.pose, settings_.hit_sigma_cells);
+        particle.log_weight += costs.scanLogLikelihood(scan, particle.pose);
       }
       resample(particles, rng);
     }
