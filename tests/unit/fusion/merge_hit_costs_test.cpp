@@ -73,6 +73,23 @@ TEST(MergeHitCostsTest, FieldOfManyDistinctDistancesKeepsEachCellsCost) {
   expectEveryCellAsTheField(costs, distance, 4.5, 1.5);
 }
 
+TEST(MergeHitCostsTest, MapWithoutWallsCostsTheCapEverywhereAndAnEmptyFieldOffTheMap) {
+  GridGeometry geometry;
+  geometry.width = 30;
+  geometry.height = 20;
+  const GridMap open_floor(geometry, GridMap::kFree);
+  const HitCosts costs(wallDistance(open_floor, 65), 4.5, 1.5);
+  ASSERT_TRUE(costs.indexed());
+  ASSERT_EQ(costs.table().size(), 1u);
+  EXPECT_EQ(costs.table().front(), 4.5);
+  const std::vector<Eigen::Vector2d> scan = {{0.0, 0.0}, {3.0, -2.0}, {100.0, 0.0}};
+  EXPECT_EQ(costs.scanLogLikelihood(scan, SE2(10.0, 10.0, 0.3)), -3.0 * 4.5);
+
+  const HitCosts none(cv::Mat(), 4.5, 1.5);
+  EXPECT_EQ(none.at(0, 0), 4.5);
+  EXPECT_EQ(none.scanLogLikelihood(scan, SE2(0.0, 0.0, 0.0)), -3.0 * 4.5);
+}
+
 TEST(MergeHitCostsTest, RealMapScansSumAsTheFieldBitForBit) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-intel.pgm");
   const GridMap map = merge_test::loadMap(test::sharedDataPath("maps/freiburg-intel.pgm"));
