@@ -25,7 +25,6 @@ using bench::kCases;
 using bench::percentileOf;
 
 constexpr int kWallOccupancy = 65;  // as the virtual robot's walls
-constexpr std::size_t kScanPoints = 60;
 constexpr int kParticles = 4000;
 constexpr double kSigma = 1.5;
 constexpr double kCap = 3.0 * kSigma;
@@ -42,25 +41,14 @@ std::vector<cv::Point> setCells(const cv::Mat& image) {
   return cells;
 }
 
-std::vector<Eigen::Vector2d> evenlyThinned(const std::vector<Eigen::Vector2d>& points) {
-  if (points.size() <= kScanPoints) {
-    return points;
-  }
-  std::vector<Eigen::Vector2d> kept;
-  const double step = static_cast<double>(points.size()) / kScanPoints;
-  for (std::size_t i = 0; i < kScanPoints; ++i) {
-    kept.push_back(points[static_cast<std::size_t>(static_cast<double>(i) * step)]);
-  }
-  return kept;
-}
-
 std::vector<LikelihoodCase> likelihoodCases(const std::string& file) {
   const SimilaritySettings classes;
   const VirtualRobotSettings settings;
   std::mt19937_64 random(3);
   std::vector<LikelihoodCase> result;
   for (const merge_test::KnownCase& known : bench::cases(file)) {
-    const std::vector<cv::Point> starts = setCells(freeSpaceSkeleton(known.from, classes));
+    const cv::Mat skeleton_from = freeSpaceSkeleton(known.from, classes);
+    const std::vector<cv::Point> starts = setCells(skeleton_from);
     const std::vector<cv::Point> places = setCells(freeSpaceSkeleton(known.to, classes));
     if (starts.empty() || places.empty()) {
       continue;
@@ -68,10 +56,9 @@ std::vector<LikelihoodCase> likelihoodCases(const std::string& file) {
     LikelihoodCase next;
     next.distance = wallDistance(known.to, kWallOccupancy);
     const cv::Point start = starts[random() % starts.size()];
-    for (const CellPose& pose :
-         skeletonWalk(freeSpaceSkeleton(known.from, classes), Eigen::Vector2i(start.x, start.y),
-                      settings.path_poses, settings.path_step_cells)) {
-      next.scans.push_back(evenlyThinned(virtualScan(known.from, pose, settings)));
+    for (const CellPose& pose : skeletonWalk(skeleton_from, Eigen::Vector2i(start.x, start.y),
+                                             settings.path_poses, settings.path_step_cells)) {
+      next.scans.push_back(scanPointsUsed(virtualScan(known.from, pose, settings)));
     }
     std::uniform_real_distribution<double> jitter(-0.5, 0.5);
     std::uniform_real_distribution<double> heading(-M_PI, M_PI);

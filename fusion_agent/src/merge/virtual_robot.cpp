@@ -67,18 +67,6 @@ struct Particle {
   double log_weight = 0.0;
 };
 
-std::vector<Eigen::Vector2d> thinned(const std::vector<Eigen::Vector2d>& points) {
-  if (points.size() <= kScanPointsUsed) {
-    return points;
-  }
-  std::vector<Eigen::Vector2d> kept;
-  const double step = static_cast<double>(points.size()) / kScanPointsUsed;
-  for (std::size_t i = 0; i < kScanPointsUsed; ++i) {
-    kept.push_back(points[static_cast<std::size_t>(i * step)]);
-  }
-  return kept;
-}
-
 /// Systematic resampling by weight (the log weights are reset).
 void resample(std::vector<Particle>& particles, std::mt19937_64& rng) {
   double best = -std::numeric_limits<double>::infinity();
@@ -171,6 +159,18 @@ std::vector<CellPose> skeletonWalk(const cv::Mat& skeleton, const Eigen::Vector2
   return walk;
 }
 
+std::vector<Eigen::Vector2d> scanPointsUsed(const std::vector<Eigen::Vector2d>& points) {
+  if (points.size() <= kScanPointsUsed) {
+    return points;
+  }
+  std::vector<Eigen::Vector2d> kept;
+  const double step = static_cast<double>(points.size()) / kScanPointsUsed;
+  for (std::size_t i = 0; i < kScanPointsUsed; ++i) {
+    kept.push_back(points[static_cast<std::size_t>(i * step)]);
+  }
+  return kept;
+}
+
 std::vector<Eigen::Vector2d> virtualScan(const GridMap& map, const CellPose& pose,
                                          const VirtualRobotSettings& settings) {
   std::vector<Eigen::Vector2d> points;
@@ -234,7 +234,8 @@ std::vector<GridTransform> VirtualRobotMerger::hypotheses(const GridMap& from,
                                   step.theta() + turn_noise(rng));
         }
       }
-      const std::vector<Eigen::Vector2d> scan = thinned(virtualScan(from, walk[k], settings_));
+      const std::vector<Eigen::Vector2d> scan =
+          scanPointsUsed(virtualScan(from, walk[k], settings_));
       for (Particle& particle : particles) {
         particle.log_weight += costs.scanLogLikelihood(scan, particle.pose);
       }

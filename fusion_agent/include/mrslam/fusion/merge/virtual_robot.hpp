@@ -53,6 +53,10 @@ struct CellPose {
 std::vector<CellPose> skeletonWalk(const cv::Mat& skeleton, const Eigen::Vector2i& start, int poses,
                                    int step_cells);
 
+/// The end points of a scan that weigh the particles: all of them up to 60, else 60 evenly
+/// spaced along the scan.
+std::vector<Eigen::Vector2d> scanPointsUsed(const std::vector<Eigen::Vector2d>& scan);
+
 /// A virtual scan of `map` from `pose`: the end cell (relative to the pose, robot frame, cells)
 /// of every ray that meets an occupied cell within reach; rays that leave the known map or meet
 /// nothing are dropped.
