@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -39,6 +40,11 @@ inline double percentileOf(std::vector<double> values, double fraction) {
   std::sort(values.begin(), values.end());
   const auto rank = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
   return values[rank];
+}
+
+/// The sum of the times (or any values).
+inline double totalOf(const std::vector<double>& values) {
+  return std::accumulate(values.begin(), values.end(), 0.0);
 }
 
 }  // namespace mrslam::fusion::bench

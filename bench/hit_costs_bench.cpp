@@ -8,7 +8,6 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
-#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -23,6 +22,7 @@ namespace {
 
 using bench::kCases;
 using bench::percentileOf;
+using bench::totalOf;
 
 constexpr int kWallOccupancy = 65;  // as the virtual robot's walls
 constexpr int kParticles = 4000;
@@ -134,12 +134,9 @@ void BM_ScanLikelihoods400(benchmark::State& state, const char* file) {
     same += by_field == by_table ? 1 : 0;
     benchmark::DoNotOptimize(by_table.data());
   }
-  const auto total = [](const std::vector<double>& times) {
-    return std::accumulate(times.begin(), times.end(), 0.0);
-  };
   state.counters["field_median_ms"] = percentileOf(field_ms, 0.5);
   state.counters["table_median_ms"] = percentileOf(table_ms, 0.5);
-  state.counters["time_ratio"] = total(table_ms) / total(field_ms);
+  state.counters["time_ratio"] = totalOf(table_ms) / totalOf(field_ms);
   state.counters["same_share"] = static_cast<double>(same) / static_cast<double>(field_ms.size());
 }
 BENCHMARK_CAPTURE(BM_ScanLikelihoods400, intel, "carpin-intel.txt")

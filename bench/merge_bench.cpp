@@ -17,7 +17,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <numeric>
 #include <opencv2/core.hpp>
 #include <random>
 #include <string>
@@ -38,6 +37,7 @@ using bench::cases;
 using bench::kCases;
 using bench::kSize;
 using bench::percentileOf;
+using bench::totalOf;
 
 /// One merge, its wall-clock time appended to `times_ms`.
 MergeResult timedMerge(MapMerger& merger, const GridMap& from, const GridMap& to,
@@ -140,7 +140,7 @@ BENCHMARK_CAPTURE(BM_Merge400, virtual_unchecked_intel, "virtual", "carpin-intel
 /// share no block holds).
 void reportBlockShares(benchmark::State& state, const std::vector<double>& times,
                        const BlockTimes& total) {
-  const double sum = std::accumulate(times.begin(), times.end(), 0.0);
+  const double sum = totalOf(times);
   state.counters["median_ms"] = percentileOf(times, 0.5);
   for (const BlockTime& block : total) {
     state.counters[block.name] = block.ms / sum;
@@ -254,13 +254,10 @@ void BM_ExhaustiveSearch400(benchmark::State& state, const char* file) {
                 ? 1
                 : 0;
   }
-  const auto total = [](const std::vector<double>& times) {
-    return std::accumulate(times.begin(), times.end(), 0.0);
-  };
   state.counters["median_ms"] = percentileOf(early_ms, 0.5);
   state.counters["every_point_median_ms"] = percentileOf(every_ms, 0.5);
   state.counters["suggested_turns_median_ms"] = percentileOf(turns_ms, 0.5);
-  state.counters["time_ratio"] = total(early_ms) / total(every_ms);
+  state.counters["time_ratio"] = totalOf(early_ms) / totalOf(every_ms);
   state.counters["same_share"] = static_cast<double>(same) / static_cast<double>(early_ms.size());
 }
 BENCHMARK_CAPTURE(BM_ExhaustiveSearch400, intel, "carpin-intel.txt")

@@ -6,7 +6,6 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
-#include <numeric>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -22,6 +21,7 @@ namespace {
 using bench::kCases;
 using bench::kSize;
 using bench::percentileOf;
+using bench::totalOf;
 
 /// The wall cells of the turned crops of the merge benchmark's cases (each case's `from`).
 std::vector<std::vector<cv::Point>> wallsOfCrops(const std::string& file) {
@@ -68,12 +68,9 @@ void BM_RadonProfile400(benchmark::State& state, const char* file) {
     same += by_image == by_cells ? 1 : 0;
     benchmark::DoNotOptimize(by_cells.data());
   }
-  const auto total = [](const std::vector<double>& times) {
-    return std::accumulate(times.begin(), times.end(), 0.0);
-  };
   state.counters["image_median_ms"] = percentileOf(image_ms, 0.5);
   state.counters["cells_median_ms"] = percentileOf(cells_ms, 0.5);
-  state.counters["time_ratio"] = total(cells_ms) / total(image_ms);
+  state.counters["time_ratio"] = totalOf(cells_ms) / totalOf(image_ms);
   state.counters["same_share"] = static_cast<double>(same) / static_cast<double>(image_ms.size());
   state.counters["walls"] = walls / static_cast<double>(image_ms.size());
 }
