@@ -48,7 +48,7 @@ HitCosts::HitCosts(const cv::Mat& distance, double cap, double sigma)
   std::map<double, std::uint8_t> slots;
   index_.reserve(cells);
   for (const double d : capped) {
-    const auto [slot, added] = slots.emplace(d, static_cast<std::uint8_t>(table_.size()));
+    const auto [slot, added] = slots.try_emplace(d, static_cast<std::uint8_t>(table_.size()));
     if (added) {
       if (table_.size() == kMostIndexedCosts) {
         break;  // too many distinct costs for a byte
