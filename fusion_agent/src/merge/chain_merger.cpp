@@ -7,6 +7,7 @@
 
 #include "mrslam/fusion/merge/approximate_pose.hpp"
 #include "mrslam/fusion/merge/dissimilarity.hpp"
+#include "mrslam/fusion/merge/floor_crossing.hpp"
 #include "mrslam/fusion/merge/global_search.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
 #include "mrslam/fusion/merge/random_walk.hpp"
@@ -149,6 +150,11 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
     }
     trials += result.trials;
     searched.insert(searched.end(), result.hypotheses.begin(), result.hypotheses.end());
+    if (result.accepted && settings_.floor_crossing_min_cells > 0) {
+      timeBlock(times_, "chain/floor_crossing", [&] {
+        refuseWhereWallsCrossFloor(from, to, settings_, judge_.settings().similarity, result);
+      });
+    }
     if (result.accepted && !undecided.empty()) {
       timeBlock(times_, "chain/undecided", [&] { judgeAgainstUndecided(from, undecided, result); });
     }
@@ -520,6 +526,35 @@ void refuseWhereSlidesCostLittle(const GridMap& from, const GridMap& to,
                   ") cells the placement disagrees on " + std::to_string(slide.margin()) +
                   " more known cells (below " + std::to_string(settings.min_slide_margin_cells) +
                   ")";
+}
+
+void refuseWhereWallsCrossFloor(const GridMap& from, const GridMap& to,
+                                const ChainSettings& settings, const SimilaritySettings& classes,
+                                MergeResult& result) {
+  if (!result.accepted || settings.floor_crossing_min_cells <= 0) {
+    return;
+  }
+  const double clearance = settings.floor_crossing_clearance_cells;
+  const FloorCrossing ways[] = {
+      floorCrossing(from, to, result.T_to_from, classes, clearance),
+      floorCrossing(to, from, result.T_to_from.inverse(), classes, clearance)};
+  for (int way = 0; way < 2; ++way) {
+    const FloorCrossing& crossing = ways[way];
+    if (crossing.run_cells < settings.floor_crossing_min_cells ||
+        crossing.share() < settings.floor_crossing_min_share) {
+      continue;
+    }
+    std::ostringstream reason;
+    reason << "a run of " << crossing.run_cells << " wall cells of the "
+           << (way == 0 ? "first" : "second") << " map crosses the other's open floor ("
+           << 100.0 * crossing.share() << " % of its " << crossing.walls_on_known
+           << " walls on known cells; bars " << settings.floor_crossing_min_cells << " cells and "
+           << 100.0 * settings.floor_crossing_min_share << " %)";
+    result.accepted = false;
+    result.refusal = MergeRefusal::kStructure;
+    result.reason = reason.str();
+    return;
+  }
 }
 
 void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,

@@ -56,6 +56,12 @@ ChainSettings loadChainSettings(const Config& chain) {
       chain.getDouble("second_opinion_turn_share", s.second_opinion_turn_share, {0.0, 1.0});
   s.min_slide_margin_cells =
       chain.getInt("min_slide_margin_cells", s.min_slide_margin_cells, {0, 100000000});
+  s.floor_crossing_min_cells = static_cast<int>(
+      chain.getInt("floor_crossing_min_cells", s.floor_crossing_min_cells, {0, 100000000}));
+  s.floor_crossing_min_share =
+      chain.getDouble("floor_crossing_min_share", s.floor_crossing_min_share, {0.0, 1.0});
+  s.floor_crossing_clearance_cells = chain.getDouble(
+      "floor_crossing_clearance_cells", s.floor_crossing_clearance_cells, {0.0, 100.0});
   return s;
 }
 

@@ -132,8 +132,14 @@ TEST(MergeAcceptanceBarsTest, RoomsSlidByARoomAreRefusedAtTheBar) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
+  // The old bar (the floor-crossing check off, as by default), and with that check on: it refuses
+  // the slid rooms too.
   const std::unique_ptr<MapMerger> old_bar =
-      merge_test::chainWithSeed(merge_test::kStructureBarAt088);
+      merge_test::chainFrom("chain: {floor_crossing_min_cells: 0}\nseed: {" +
+                            std::string(merge_test::kStructureBarAt088) + "}\n");
+  const std::unique_ptr<MapMerger> old_bar_crossing =
+      merge_test::chainFrom("chain: {floor_crossing_min_cells: 4}\nseed: {" +
+                            std::string(merge_test::kStructureBarAt088) + "}\n");
   for (const CropPair& pair : kRoomsSlidByARoom) {
     const MergeCase merge_case = cut(pair);
     const MergeResult refused = chain->merge(merge_case.a, merge_case.b);
@@ -146,6 +152,8 @@ TEST(MergeAcceptanceBarsTest, RoomsSlidByARoomAreRefusedAtTheBar) {
     ASSERT_TRUE(slid.accepted) << "case " << pair.case_id << ": " << slid.reason;
     EXPECT_GT(caseError(merge_case, slid.T_to_from).distance_cells, 80.0)
         << "case " << pair.case_id;
+    EXPECT_FALSE(old_bar_crossing->merge(merge_case.a, merge_case.b).accepted)
+        << "case " << pair.case_id << ": the slid room's walls cross the other's open floor";
   }
 }
 

@@ -101,6 +101,10 @@ const CropPair kRightMergeWithASlidUnwalledFit{
     {{411, 467}, 214, 0.923286592443989, {8, 17}, {28, 24}},
     {{446, 539}, 171, -2.582374494537391, {5, 25}, {23, 17}}};
 
+// The floor-crossing check off (a chain section's key): it refuses the wrong placements below
+// too, and the checks under test are the others.
+const std::string kFloorOff = "floor_crossing_min_cells: 0";
+
 std::unique_ptr<MapMerger> chainWith(const std::string& chain_section) {
   return merge_test::chainFrom("chain: {" + chain_section + "}\n");
 }
@@ -118,10 +122,11 @@ std::unique_ptr<MapMerger> chainAtBarOf088(const std::string& chain_section) {
 MergeResult expectTurnedWithoutTheCheckAndRefusedWithIt(const MergeCase& merge_case,
                                                         double least_turn_deg) {
   const MergeResult without =
-      chainWith("cleaner_alternative_rate: 0")->merge(merge_case.a, merge_case.b);
+      chainWith("cleaner_alternative_rate: 0, " + kFloorOff)->merge(merge_case.a, merge_case.b);
   EXPECT_TRUE(without.accepted) << without.reason;
   EXPECT_GT(angleErrorDeg(merge_case, without.T_to_from), least_turn_deg);
-  const MergeResult with = merge_test::chainOfTwoSteps()->merge(merge_case.a, merge_case.b);
+  const MergeResult with =
+      merge_test::chainOfTwoSteps(kFloorOff)->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(with.accepted);
   EXPECT_EQ(with.refusal, MergeRefusal::kRival);
   EXPECT_NE(with.reason.find("another placement"), std::string::npos) << with.reason;
@@ -207,11 +212,11 @@ TEST(MergeChainAlternativesTest, SlidAlternativesRefuseAWrongQuarterTurnAndARigh
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   const MergeCase wrong_turn = cut(kFloorTurnedByAQuarter);
   const MergeResult wrong =
-      chainWith("turned_rival_degrees: []")->merge(wrong_turn.a, wrong_turn.b);
+      chainWith("turned_rival_degrees: [], " + kFloorOff)->merge(wrong_turn.a, wrong_turn.b);
   ASSERT_TRUE(wrong.accepted) << wrong.reason;
   EXPECT_GT(angleErrorDeg(wrong_turn, wrong.T_to_from), 80.0);
   const std::unique_ptr<MapMerger> slid =
-      chainWith("turned_rival_degrees: [], slid_alternative_rate: 0.5");
+      chainWith("turned_rival_degrees: [], slid_alternative_rate: 0.5, " + kFloorOff);
   const MergeResult refused = slid->merge(wrong_turn.a, wrong_turn.b);
   EXPECT_FALSE(refused.accepted);
   EXPECT_NE(refused.reason.find("fails on its own only for its exact shift"), std::string::npos)
@@ -226,10 +231,10 @@ TEST(MergeChainAlternativesTest, AnUnwalledTruthThatOverlapsMoreRefusesAQuarterT
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot2_cast.txt");
   const MergeCase merge_case = cut(kRoomTurnedWithItsTruthUnwalled);
   const MergeResult wrong =
-      chainAtBarOf088("walls_alternative_rate: 0")->merge(merge_case.a, merge_case.b);
+      chainAtBarOf088("walls_alternative_rate: 0, " + kFloorOff)->merge(merge_case.a, merge_case.b);
   ASSERT_TRUE(wrong.accepted) << wrong.reason;
   EXPECT_GT(angleErrorDeg(merge_case, wrong.T_to_from), 80.0);
-  const MergeResult refused = chainAtBarOf088("")->merge(merge_case.a, merge_case.b);
+  const MergeResult refused = chainAtBarOf088(kFloorOff)->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(refused.accepted);
   EXPECT_NE(refused.reason.find("fails on its own only for the walls it leaves unmet"),
             std::string::npos)

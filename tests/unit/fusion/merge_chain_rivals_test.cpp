@@ -85,6 +85,7 @@ MergeResult chainOf(const MergeResult& first, const MergeResult& second, bool sl
   ChainSettings settings;
   settings.slid_rivals = slid_rivals;
   settings.sweep_rivals = false;  // it refuses the wrong wing too: the slid rival is under test
+  settings.floor_crossing_min_cells = 0;  // so does the floor-crossing check
   ChainMerger chain(std::move(steps), settings);
   return chain.merge(merge_case.a, merge_case.b);
 }
@@ -209,17 +210,25 @@ TEST(MergeChainRivalsTest, TheConfiguredChainDoesNotAcceptTheWrongWing) {
   EXPECT_TRUE(isCorrect(caseError(merge_case, result.T_to_from)))
       << caseError(merge_case, result.T_to_from).distance_cells << " cells from the truth";
   // Every rival counted (the wrong wing refuses the truth), the chain's own checks decide.
-  const MergeResult wrong = mergeWingWith(
-      merge_case, "slid_rivals: false, sweep_rivals: false, cleaner_alternative_rate: 0");
-  ASSERT_TRUE(wrong.accepted)
-      << "without the earlier rival, the sweep and the alternatives the wrong wing is taken";
+  const std::string unchecked =
+      "slid_rivals: false, sweep_rivals: false, cleaner_alternative_rate: 0";
+  const MergeResult wrong =
+      mergeWingWith(merge_case, std::string(unchecked) + ", floor_crossing_min_cells: 0");
+  ASSERT_TRUE(wrong.accepted) << "without the earlier rival, the sweep, the alternatives and the "
+                                 "floor-crossing check the wrong wing is taken";
   EXPECT_GT(caseError(merge_case, wrong.T_to_from).distance_cells, 80.0);
-  const MergeResult swept =
-      mergeWingWith(merge_case, "slid_rivals: false, cleaner_alternative_rate: 0");
+  const MergeResult swept = mergeWingWith(
+      merge_case, "slid_rivals: false, cleaner_alternative_rate: 0, floor_crossing_min_cells: 0");
   EXPECT_FALSE(swept.accepted) << "the sweep finds the cleaner truth at the wrong wing's rotation";
-  const MergeResult weighed = mergeWingWith(merge_case, "slid_rivals: false, sweep_rivals: false");
+  const MergeResult weighed = mergeWingWith(
+      merge_case, "slid_rivals: false, sweep_rivals: false, floor_crossing_min_cells: 0");
   EXPECT_FALSE(weighed.accepted) << "the exhaustive search's own hypotheses hold the truth";
   EXPECT_NE(weighed.reason.find("another placement"), std::string::npos) << weighed.reason;
+  const MergeResult crossing =
+      mergeWingWith(merge_case, std::string(unchecked) + ", floor_crossing_min_cells: 4");
+  EXPECT_FALSE(crossing.accepted) << "the wrong wing's walls cross the other map's open floor";
+  EXPECT_NE(crossing.reason.find("crosses the other's open floor"), std::string::npos)
+      << crossing.reason;
 }
 
 TEST(MergeChainRivalsTest, TheSettingIsRead) {
@@ -257,9 +266,11 @@ const CropPair kAcesCorridors{"freiburg-aces.pgm",
                               {{690, 1}, 254, -1.5614571367744312, {12, 15}, {27, 1}}};
 
 std::unique_ptr<MapMerger> chainWithSweep(bool sweep_rivals) {
+  // The floor-crossing check off: it refuses the repeated room too.
   return makeMergerFrom("chain", Config::loadString(std::string("chain: {sweep_rivals: ") +
                                                         (sweep_rivals ? "true" : "false") +
-                                                        "}\nexhaustive: {hypotheses: 16}\n",
+                                                        ", floor_crossing_min_cells: 0}\n"
+                                                        "exhaustive: {hypotheses: 16}\n",
                                                     "m.yaml"));
 }
 
@@ -279,6 +290,7 @@ TEST(MergeChainSweepRivalsTest, ARepeatedRoomIsRefusedForTheCleanerTruthAtItsRot
   EXPECT_FALSE(result.accepted) << caseError(merge_case, result.T_to_from).distance_cells
                                 << " cells from the truth";
   EXPECT_NE(result.reason.find("more cleanly"), std::string::npos) << result.reason;
+  EXPECT_FALSE(makeMerger(defaultMergerName())->merge(merge_case.a, merge_case.b).accepted);
 }
 
 // The default prefilter keeps the cleaner truth among the peaks placed (the test above); a bar
@@ -287,7 +299,8 @@ TEST(MergeChainSweepRivalsTest, APrefilterBelowEveryPeakLeavesNoRivalToPlace) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
   const MergeCase merge_case = cut(kRepeatingRooms);
   const std::unique_ptr<MapMerger> chain =
-      makeMergerFrom("chain", Config::loadString("chain: {sweep_prefilter_rate: 0.01}\n"
+      makeMergerFrom("chain", Config::loadString("chain: {sweep_prefilter_rate: 0.01, "
+                                                 "floor_crossing_min_cells: 0}\n"
                                                  "exhaustive: {hypotheses: 16}\n",
                                                  "m.yaml"));
   const MergeResult result = chain->merge(merge_case.a, merge_case.b);

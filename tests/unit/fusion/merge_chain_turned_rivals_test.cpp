@@ -108,16 +108,20 @@ TEST(MergeChainTurnedRivalsTest, TheSettingsAreReadAndRangeChecked) {
                ConfigError);
 }
 
-// Each pair is refused for the turn by default, and placed more than 45° from the truth by the
-// chain with `chain_section` (the check, or the part of it under test, off).
+// Each pair is refused by default, refused for the turn with the floor-crossing check off (which
+// refuses them too), and placed more than 45° from the truth by the chain with `chain_section` (the
+// check, or the part of it under test, off) and the floor-crossing check off.
 template <std::size_t N>
 void expectRefusedForTheTurnAndTurnedWithout(const CropPair (&pairs)[N],
                                              const std::string& chain_section) {
-  const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
+  const std::string floor_off = "floor_crossing_min_cells: 0";
+  const std::unique_ptr<MapMerger> by_default = makeMerger(defaultMergerName());
+  const std::unique_ptr<MapMerger> chain = merge_test::chainFrom("chain: {" + floor_off + "}\n");
   const std::unique_ptr<MapMerger> without =
-      merge_test::chainFrom("chain: {" + chain_section + "}\n");
+      merge_test::chainFrom("chain: {" + chain_section + ", " + floor_off + "}\n");
   for (const CropPair& pair : pairs) {
     const MergeCase merge_case = merge_test::cut(pair);
+    EXPECT_FALSE(by_default->merge(merge_case.a, merge_case.b).accepted) << "case " << pair.case_id;
     const MergeResult refused = chain->merge(merge_case.a, merge_case.b);
     EXPECT_TRUE(refusedForTheTurn(refused)) << "case " << pair.case_id << ": " << refused.reason;
     const MergeResult wrong = without->merge(merge_case.a, merge_case.b);

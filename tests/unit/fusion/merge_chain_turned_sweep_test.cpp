@@ -62,10 +62,14 @@ const CropPair kRightMergeThenItsHalfTurn{
 
 const CropPair kTurnedHalls[] = {kHallTurnedByAHalf, kCrossingTurnedByAQuarter};
 
+// The floor-crossing check off (a chain section's key): it refuses both turned halls too, and the
+// sweep is under test here.
+const std::string kFloorOff = "floor_crossing_min_cells: 0";
+
 TEST(MergeChainTurnedSweepTest, TheTruthOfEachTurnedHallPassesAloneAndFitsMoreCleanly) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   const std::unique_ptr<MapMerger> without =
-      merge_test::chainFrom("chain: {alternative_sweep_degrees: []}\n");
+      merge_test::chainFrom("chain: {alternative_sweep_degrees: [], " + kFloorOff + "}\n");
   for (const CropPair& pair : kTurnedHalls) {
     const MergeCase merge_case = cut(pair);
     const MergeResult turned = without->merge(merge_case.a, merge_case.b);
@@ -86,9 +90,12 @@ TEST(MergeChainTurnedSweepTest, TheTruthOfEachTurnedHallPassesAloneAndFitsMoreCl
 TEST(MergeChainTurnedSweepTest, TheDefaultChainRefusesEachTurnedHallForItsCleanerTurn) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
   const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
+  const std::unique_ptr<MapMerger> floor_off =
+      merge_test::chainFrom("chain: {" + kFloorOff + "}\n");
   for (const CropPair& pair : kTurnedHalls) {
     const MergeCase merge_case = cut(pair);
-    const MergeResult refused = chain->merge(merge_case.a, merge_case.b);
+    EXPECT_FALSE(chain->merge(merge_case.a, merge_case.b).accepted) << "case " << pair.case_id;
+    const MergeResult refused = floor_off->merge(merge_case.a, merge_case.b);
     EXPECT_FALSE(refused.accepted) << "case " << pair.case_id;
     EXPECT_NE(refused.reason.find("another placement"), std::string::npos)
         << "case " << pair.case_id << ": " << refused.reason;
@@ -132,7 +139,7 @@ TEST(MergeChainTurnedSweepTest, TheSweepTurnsOnlyByTheConfiguredAngles) {
   // The half turn's truth lies 180° from the wrong placement: a sweep at quarter turns alone does
   // not reach it, and the chain accepts the half turn as it did without any sweep.
   const std::unique_ptr<MapMerger> quarters =
-      merge_test::chainFrom("chain: {alternative_sweep_degrees: [90, 270]}\n");
+      merge_test::chainFrom("chain: {alternative_sweep_degrees: [90, 270], " + kFloorOff + "}\n");
   const MergeCase merge_case = cut(kHallTurnedByAHalf);
   const MergeResult turned = quarters->merge(merge_case.a, merge_case.b);
   ASSERT_TRUE(turned.accepted) << turned.reason;

@@ -67,10 +67,12 @@ void expectRefusedAtThreeAndMergedByDefault(const CropPair& pair) {
 void expectTurnedAtALowerBarAndRefusedByDefault(const CropPair& pair, double lower_bar,
                                                 double least_turn_deg) {
   const MergeCase merge_case = cut(pair);
-  // The unwalled alternatives (chain.walls_alternative_rate) would refuse the quarter turn too.
-  // At the structure bar of 0.88, where the quarter turn's walls pass.
-  const std::string deep = "chain: {walls_alternative_rate: 0}\nseed: {judged_candidates: 16, " +
-                           merge_test::kStructureBarAt088;
+  // The unwalled alternatives (chain.walls_alternative_rate) and the floor-crossing check would
+  // refuse the quarter turn too. At the structure bar of 0.88, where the quarter turn's walls pass.
+  const std::string deep =
+      "chain: {walls_alternative_rate: 0, floor_crossing_min_cells: 0}\n"
+      "seed: {judged_candidates: 16, " +
+      merge_test::kStructureBarAt088;
   const MergeResult lower =
       chainFrom(deep + ", late_rank_min_verification: " + std::to_string(lower_bar) + "}\n")
           ->merge(merge_case.a, merge_case.b);

@@ -24,7 +24,9 @@
 // turned as well). With
 // `second_opinion_step`, a transform whose turn check came near its bar is refused when that step
 // (the seed pipeline), run as well, ends within the wall alignment's window of it and finds there
-// that the walls do not fix the rotation.
+// that the walls do not fix the rotation. With `floor_crossing_min_cells`, a step's transform is
+// refused where the walls of one map run across the other's open floor (floor_crossing.hpp): a
+// room that looks alike, placed along a corridor or turned.
 
 #include <cmath>
 #include <memory>
@@ -129,6 +131,16 @@ struct ChainSettings {
   /// (truth_slide.hpp): the maps hardly fix its shift. 0: off (the default; docs/merge_tuning.md,
   /// thirty-fifth session: it refuses more right merges than wrong ones).
   long long min_slide_margin_cells = 0;
+  /// A step's accepted transform is refused when the walls of either map cross the other's open
+  /// floor (floor_crossing.hpp) in a run of at least floor_crossing_min_cells cells that is at
+  /// least floor_crossing_min_share of its walls on the other's known cells: a room that looks
+  /// alike placed along or turned (docs/merge_tuning.md, forty-sixth session). 0 cells: off, the
+  /// default: at 4 cells it refused every room placed along or turned on the case sets, but it
+  /// refused right merges of the ACES team's maps while they grew (runs of 14-20 cells, 1.5-2.2 %).
+  int floor_crossing_min_cells = 0;
+  double floor_crossing_min_share = 0.015;
+  /// Crossing cells lie farther than this from the other map's walls (cells).
+  double floor_crossing_clearance_cells = 2.5;
 };
 
 class ChainMerger : public MapMerger {
@@ -248,6 +260,12 @@ void refuseWhereSlidesCostLittle(const GridMap& from, const GridMap& to,
                                  const ChainSettings& settings, const SimilaritySettings& classes,
                                  const std::string& step, const std::string& chain,
                                  MergeResult& result);
+
+/// With floor_crossing_min_cells: refuses a step's accepted `result` when the walls of either map
+/// cross the other's open floor (see ChainSettings), cells classed by `classes`.
+void refuseWhereWallsCrossFloor(const GridMap& from, const GridMap& to,
+                                const ChainSettings& settings, const SimilaritySettings& classes,
+                                MergeResult& result);
 
 /// Refines an accepted result by ψ (see ChainSettings), cells classed by `classes` as the judge
 /// classes them; `method` gains "+psi" when it is kept.
