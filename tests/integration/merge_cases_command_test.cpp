@@ -268,10 +268,11 @@ CommandRun chainCases(const char* seed, const char* only, bool json, const char*
 TEST(MergeCasesCommandTest, CountsTheGrossFalseAcceptsApartFromTheNearMisses) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun6.txt");
-  // The chain's wrong accepts of docs/merge_tuning.md: case 84 of set 31 turns Carpin's robot 1
-  // by 89 degrees (a gross false accept), case 66 of set 25 places LongRun6 0.6 cells and 1.3
-  // degrees from the truth (a near miss).
-  const CommandRun gross = chainCases("31", "84", true, "gross");
+  // The chain's wrong accepts of docs/merge_tuning.md: case 63 of set 233 turns a sliver of
+  // Carpin's robot 1 by 93 degrees and places it 78 cells off (a gross false accept; it crosses
+  // no floor), case 66 of set 25 places LongRun6 0.6 cells and 1.3 degrees from the truth (a near
+  // miss).
+  const CommandRun gross = chainCases("233", "63", true, "gross");
   ASSERT_EQ(gross.exit_code, 0) << gross.output;
   const nlohmann::json turned = jsonLine(gross.output)["methods"]["chain"];
   EXPECT_EQ(turned["false_accepts_positive"].get<int>(), 1) << turned.dump();
@@ -283,7 +284,7 @@ TEST(MergeCasesCommandTest, CountsTheGrossFalseAcceptsApartFromTheNearMisses) {
   EXPECT_EQ(off["false_accepts_positive"].get<int>(), 1) << off.dump();
   EXPECT_EQ(off["gross_false_accepts_positive"].get<int>(), 0) << off.dump();
   // The table says which are gross.
-  const CommandRun table = chainCases("31", "84", false, "gross_table");
+  const CommandRun table = chainCases("233", "63", false, "gross_table");
   ASSERT_EQ(table.exit_code, 0) << table.output;
   EXPECT_THAT(table.output, testing::HasSubstr("1 (1 gross)"));
 }

@@ -534,10 +534,12 @@ void refuseWhereWallsCrossFloor(const GridMap& from, const GridMap& to,
   if (!result.accepted || settings.floor_crossing_min_cells <= 0) {
     return;
   }
-  const double clearance = settings.floor_crossing_clearance_cells;
+  FloorCrossingSettings floor;
+  floor.clearance_cells = settings.floor_crossing_clearance_cells;
+  floor.floor_max_occupancy = settings.floor_crossing_floor_max_occupancy;
   const FloorCrossing ways[] = {
-      floorCrossing(from, to, result.T_to_from, classes, clearance),
-      floorCrossing(to, from, result.T_to_from.inverse(), classes, clearance)};
+      floorCrossing(from, to, result.T_to_from, classes, floor),
+      floorCrossing(to, from, result.T_to_from.inverse(), classes, floor)};
   for (int way = 0; way < 2; ++way) {
     const FloorCrossing& crossing = ways[way];
     if (crossing.run_cells < settings.floor_crossing_min_cells ||

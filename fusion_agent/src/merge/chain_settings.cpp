@@ -62,6 +62,8 @@ ChainSettings loadChainSettings(const Config& chain) {
       chain.getDouble("floor_crossing_min_share", s.floor_crossing_min_share, {0.0, 1.0});
   s.floor_crossing_clearance_cells = chain.getDouble(
       "floor_crossing_clearance_cells", s.floor_crossing_clearance_cells, {0.0, 100.0});
+  s.floor_crossing_floor_max_occupancy = static_cast<int>(chain.getInt(
+      "floor_crossing_floor_max_occupancy", s.floor_crossing_floor_max_occupancy, {0, 100}));
   return s;
 }
 

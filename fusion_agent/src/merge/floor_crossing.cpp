@@ -3,45 +3,73 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-
-#include <opencv2/imgproc.hpp>
+#include <vector>
 
 namespace mrslam::fusion {
 
 namespace {
 
-// Distance of each cell of `map` to its nearest wall (cells; large on a map without walls).
-cv::Mat distanceToWalls(const GridMap& map, const SimilaritySettings& classes) {
-  cv::Mat not_wall(map.geometry.height, map.geometry.width, CV_8U, cv::Scalar(255));
-  for (int y = 0; y < map.geometry.height; ++y) {
-    std::uint8_t* row = not_wall.ptr<std::uint8_t>(y);
-    for (int x = 0; x < map.geometry.width; ++x) {
-      if (map.at(x, y) >= classes.occupied_threshold) {
-        row[x] = 0;
+using Cell = Eigen::Vector2i;
+
+// The offsets within `radius` cells of a cell (centre to centre), the cell itself included.
+std::vector<Cell> offsetsWithin(double radius) {
+  std::vector<Cell> offsets;
+  const int reach = static_cast<int>(std::floor(radius));
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      if (dx * dx + dy * dy <= radius * radius) {
+        offsets.emplace_back(dx, dy);
       }
     }
   }
-  cv::Mat distance;
-  cv::distanceTransform(not_wall, distance, cv::DIST_L2, cv::DIST_MASK_5);
-  return distance;
+  return offsets;
 }
 
-bool isFree(int value, const SimilaritySettings& classes) {
-  return value >= 0 && value <= classes.free_threshold;
+bool wallWithin(const GridMap& map, const Cell& cell, const std::vector<Cell>& offsets,
+                const SimilaritySettings& classes) {
+  for (const Cell& offset : offsets) {
+    const Cell near = cell + offset;
+    if (map.geometry.contains(near.x(), near.y()) &&
+        classes.isOccupied(map.at(near.x(), near.y()))) {
+      return true;
+    }
+  }
+  return false;
 }
 
-bool isKnown(int value, const SimilaritySettings& classes) {
-  return isFree(value, classes) || value >= classes.occupied_threshold;
+bool before(const Cell& a, const Cell& b) {
+  return a.y() != b.y() ? a.y() < b.y() : a.x() < b.x();
 }
 
-int largestRun(const cv::Mat& crossing) {
-  cv::Mat labels;
-  cv::Mat stats;
-  cv::Mat centroids;
-  const int count = cv::connectedComponentsWithStats(crossing, labels, stats, centroids, 8);
+// The largest 8-connected group of `cells` (sorted by `before`, without repeats).
+int largestRun(const std::vector<Cell>& cells) {
+  std::vector<bool> reached(cells.size(), false);
+  std::vector<std::size_t> stack;
   int largest = 0;
-  for (int label = 1; label < count; ++label) {
-    largest = std::max(largest, stats.at<int>(label, cv::CC_STAT_AREA));
+  for (std::size_t start = 0; start < cells.size(); ++start) {
+    if (reached[start]) {
+      continue;
+    }
+    reached[start] = true;
+    stack.assign(1, start);
+    int run = 0;
+    while (!stack.empty()) {
+      const Cell cell = cells[stack.back()];
+      stack.pop_back();
+      ++run;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const Cell near = cell + Cell(dx, dy);
+          const auto found = std::lower_bound(cells.begin(), cells.end(), near, before);
+          const auto index = static_cast<std::size_t>(found - cells.begin());
+          if (found != cells.end() && *found == near && !reached[index]) {
+            reached[index] = true;
+            stack.push_back(index);
+          }
+        }
+      }
+    }
+    largest = std::max(largest, run);
   }
   return largest;
 }
@@ -50,35 +78,36 @@ int largestRun(const cv::Mat& crossing) {
 
 FloorCrossing floorCrossing(const GridMap& own, const GridMap& other,
                             const GridTransform& T_other_own, const SimilaritySettings& classes,
-                            double clearance_cells) {
+                            const FloorCrossingSettings& settings) {
   FloorCrossing result;
-  if (own.geometry.width <= 0 || other.geometry.width <= 0 || other.geometry.height <= 0) {
-    return result;
-  }
-  const cv::Mat distance = distanceToWalls(other, classes);
-  cv::Mat crossing(other.geometry.height, other.geometry.width, CV_8U, cv::Scalar(0));
+  const std::vector<Cell> near_offsets = offsetsWithin(settings.clearance_cells);
+  std::vector<Cell> crossing;
   for (int y = 0; y < own.geometry.height; ++y) {
     for (int x = 0; x < own.geometry.width; ++x) {
-      if (own.at(x, y) < classes.occupied_threshold) {
+      if (!classes.isOccupied(own.at(x, y))) {
         continue;
       }
       const Eigen::Vector2d landed = T_other_own.apply(Eigen::Vector2d(x, y));
-      const int u = static_cast<int>(std::floor(landed.x() + 0.5));
-      const int v = static_cast<int>(std::floor(landed.y() + 0.5));
-      if (u < 0 || v < 0 || u >= other.geometry.width || v >= other.geometry.height ||
-          !isKnown(other.at(u, v), classes)) {
+      const Cell cell(static_cast<int>(std::floor(landed.x() + 0.5)),
+                      static_cast<int>(std::floor(landed.y() + 0.5)));
+      if (!other.geometry.contains(cell.x(), cell.y())) {
+        continue;
+      }
+      const int value = other.at(cell.x(), cell.y());
+      if (!classes.isKnown(value)) {
         continue;
       }
       ++result.walls_on_known;
-      std::uint8_t& cell = crossing.ptr<std::uint8_t>(v)[u];
-      if (cell == 0 && isFree(other.at(u, v), classes) &&
-          distance.ptr<float>(v)[u] > clearance_cells) {
-        cell = 255;
-        ++result.crossing_cells;
+      if (value >= 0 && value <= settings.floor_max_occupancy &&
+          !wallWithin(other, cell, near_offsets, classes)) {
+        crossing.push_back(cell);
       }
     }
   }
-  result.run_cells = result.crossing_cells > 0 ? largestRun(crossing) : 0;
+  std::sort(crossing.begin(), crossing.end(), before);
+  crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
+  result.crossing_cells = static_cast<int>(crossing.size());
+  result.run_cells = largestRun(crossing);
   return result;
 }
 

@@ -43,12 +43,10 @@ Cells classify(const GridMap& map, const SimilaritySettings& classes, cv::Mat& k
     std::uint8_t* row = known.ptr<std::uint8_t>(y);
     for (int x = 0; x < map.geometry.width; ++x) {
       const int value = map.at(x, y);
-      if (value >= classes.occupied_threshold) {
+      if (classes.isOccupied(value)) {
         walls.emplace_back(x, y);
-        row[x] = 1;
-      } else if (value >= 0 && value <= classes.free_threshold) {
-        row[x] = 1;
       }
+      row[x] = classes.isKnown(value) ? 1 : 0;
     }
   }
   return walls;

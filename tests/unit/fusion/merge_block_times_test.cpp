@@ -159,11 +159,12 @@ TEST(BlockTimesTest, TheDefaultChainTimesItsStepsAndItsChecks) {
       timedMerge(*chain, merge_test::cut(merge_test::kIntelCaseZeroOfSeedOne));
   EXPECT_TRUE(placed.result.accepted) << placed.result.reason;
   EXPECT_EQ(placed.result.method, "exhaustive");
-  EXPECT_EQ(namesOf(chain->lastBlockTimes()),
-            (std::vector<std::string>{"exhaustive/prepare", "exhaustive/search", "exhaustive/judge",
-                                      "exhaustive/other_way", "exhaustive/alignment",
-                                      "exhaustive/rest", "chain/sweep", "chain/turns",
-                                      "chain/alternatives", "chain/second_opinion"}));
+  EXPECT_EQ(
+      namesOf(chain->lastBlockTimes()),
+      (std::vector<std::string>{"exhaustive/prepare", "exhaustive/search", "exhaustive/judge",
+                                "exhaustive/other_way", "exhaustive/alignment", "exhaustive/rest",
+                                "chain/floor_crossing", "chain/sweep", "chain/turns",
+                                "chain/alternatives", "chain/second_opinion"}));
   expectWithinTheMerge(chain->lastBlockTimes(), placed.ms);
   const TimedResult refused = timedMerge(*chain, merge_test::cut(kRefusedByEveryStep));
   EXPECT_FALSE(refused.result.accepted);

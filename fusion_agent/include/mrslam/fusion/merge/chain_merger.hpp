@@ -24,9 +24,9 @@
 // turned as well). With
 // `second_opinion_step`, a transform whose turn check came near its bar is refused when that step
 // (the seed pipeline), run as well, ends within the wall alignment's window of it and finds there
-// that the walls do not fix the rotation. With `floor_crossing_min_cells`, a step's transform is
-// refused where the walls of one map run across the other's open floor (floor_crossing.hpp): a
-// room that looks alike, placed along a corridor or turned.
+// that the walls do not fix the rotation. With `floor_crossing_min_cells` (on by default), a step's
+// transform is refused where the walls of one map run across the other's certain open floor
+// (floor_crossing.hpp): a room that looks alike, placed along a corridor or turned.
 
 #include <cmath>
 #include <memory>
@@ -134,13 +134,15 @@ struct ChainSettings {
   /// A step's accepted transform is refused when the walls of either map cross the other's open
   /// floor (floor_crossing.hpp) in a run of at least floor_crossing_min_cells cells that is at
   /// least floor_crossing_min_share of its walls on the other's known cells: a room that looks
-  /// alike placed along or turned (docs/merge_tuning.md, forty-sixth session). 0 cells: off, the
-  /// default: at 4 cells it refused every room placed along or turned on the case sets, but it
-  /// refused right merges of the ACES team's maps while they grew (runs of 14-20 cells, 1.5-2.2 %).
-  int floor_crossing_min_cells = 0;
+  /// alike placed along or turned (docs/merge_tuning.md, forty-sixth and forty-seventh sessions).
+  /// 0 cells: off.
+  int floor_crossing_min_cells = 4;
   double floor_crossing_min_share = 0.015;
   /// Crossing cells lie farther than this from the other map's walls (cells).
   double floor_crossing_clearance_cells = 2.5;
+  /// ... on the other map's cells of at most this occupancy (percent): floor that only a few
+  /// beams crossed (a door open in one map and shut in the other) does not count.
+  int floor_crossing_floor_max_occupancy = 12;
 };
 
 class ChainMerger : public MapMerger {

@@ -12,15 +12,24 @@
 // overlap; this measures it where it lies.
 //
 // A crossing cell is a cell of `other` that a wall of `own` lands on (rounded to the nearest
-// cell) which `other` holds as free and which lies farther than `clearance_cells` from every wall
-// of `other` (so a wall drawn a cell or two apart in the two maps does not count). The crossing is
-// the largest 8-connected run of such cells, and its share the run over the walls of `own` that
-// land on known cells of `other`. On crops of one map, a wrong room crosses the floor with a large
-// share of its few overlapping walls and a right placement hardly at all. Real team maps of one
-// building hold long runs too (people, doors, their robots' drift): the final maps of the Carpin,
-// intel, ACES and CSAIL teams keep their share below 1.2 %, but the ACES team's maps reach 2.2 %
-// while they grow, which is why the chain's check on it is off by default (docs/merge_tuning.md,
-// forty-sixth session).
+// cell), which `other` holds as certain open floor (occupancy at most `floor_max_occupancy`, below
+// the free class's bar) and which lies farther than `clearance_cells` from every wall of `other`
+// (so a wall drawn a cell or two apart in the two maps does not count). The crossing is the
+// largest 8-connected run of such cells, and its share the run over the walls of `own` that land
+// on known cells of `other`. On crops of one map, a wrong room crosses the floor with a large
+// share of its few overlapping walls and a right placement hardly at all.
+//
+// Real team maps of one building hold long runs too. While the ACES team's maps grow, a robot's
+// map holds corridor and room floor that a few beams crossed (occupancy 17-31: two to four more
+// misses than hits under the robots' inverse sensor model) where the other robot saw a solid wall
+// (85-98): a door open in one and shut in the other, a person standing, beams passing a gap. Runs
+// on such floor reach 14-20 cells at 1.5-2.2 % of the walls. On floor of occupancy 12 or less
+// (five more misses than hits) the growing maps of the ACES, intel and CSAIL teams stay at
+// 0.55 %, 0.76 % and 0.96 % (docs/merge_tuning.md, forty-seventh session). The maps of merge
+// cases are read from trinary files, where all floor is 0.
+//
+// The clearance is tested on the cells around each landed wall and the run found among the
+// crossing cells alone, so the check costs time in proportion to the walls, not the cells.
 
 #include "mrslam/common/grid_map.hpp"
 #include "mrslam/fusion/merge/map_merger.hpp"
@@ -38,9 +47,16 @@ struct FloorCrossing {
   }
 };
 
+struct FloorCrossingSettings {
+  double clearance_cells = 2.5;  ///< crossing cells lie farther than this from `other`'s walls
+  /// Cells of `other` of at most this occupancy (percent) are open floor; cells of the free class
+  /// above it (floor few beams crossed) are not.
+  int floor_max_occupancy = 12;
+};
+
 /// The walls of `own` placed on `other` by T_other_own, measured as above.
 FloorCrossing floorCrossing(const GridMap& own, const GridMap& other,
                             const GridTransform& T_other_own, const SimilaritySettings& classes,
-                            double clearance_cells);
+                            const FloorCrossingSettings& settings);
 
 }  // namespace mrslam::fusion

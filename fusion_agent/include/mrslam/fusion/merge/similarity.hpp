@@ -35,6 +35,11 @@ struct SimilaritySettings {
   int occupied_threshold = 65;   ///< occupancy ≥ this (percent): occupied class
   int free_threshold = 35;       ///< occupancy ≤ this: free class; between: counts as unknown
   double cell_certainty = 0.95;  ///< c: occupancy probabilities are clamped to [1-c, c]
+
+  /// The class of an occupancy value (-1 unknown, else 0..100).
+  bool isOccupied(int value) const { return value >= occupied_threshold; }
+  bool isFree(int value) const { return value >= 0 && value <= free_threshold; }
+  bool isKnown(int value) const { return isFree(value) || isOccupied(value); }
 };
 
 /// Code of a cell: its occupancy 0..100, or kUnknownCode.
