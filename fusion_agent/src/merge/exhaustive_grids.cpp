@@ -227,9 +227,9 @@ SearchGrid toSearchGrid(const GridMap& map, int cell_size, const SimilaritySetti
       const int value = map.at(x, y);
       GridClass& cell = grid.classes[static_cast<std::size_t>(y / cell_size) * grid.width +
                                      static_cast<std::size_t>(x / cell_size)];
-      if (value >= classes.occupied_threshold) {
+      if (classes.isOccupied(value)) {
         cell = GridClass::kWall;
-      } else if (value >= 0 && value <= classes.free_threshold && cell == GridClass::kUnknown) {
+      } else if (classes.isFree(value) && cell == GridClass::kUnknown) {
         cell = GridClass::kFree;
       }
     }

@@ -29,9 +29,9 @@ CoarseMap coarsen(const GridMap& map, int coarse, const SimilaritySettings& clas
   for (int y = 0; y < map.geometry.height; ++y) {
     for (int x = 0; x < map.geometry.width; ++x) {
       const int value = map.at(x, y);
-      if (value >= classes.occupied_threshold) {
+      if (classes.isOccupied(value)) {
         result.occupied.at<float>(y / coarse, x / coarse) += 1.0f;
-      } else if (value >= 0 && value <= classes.free_threshold) {
+      } else if (classes.isFree(value)) {
         result.free.at<float>(y / coarse, x / coarse) += 1.0f;
       }
     }
