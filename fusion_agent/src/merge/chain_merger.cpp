@@ -537,6 +537,7 @@ void refuseWhereWallsCrossFloor(const GridMap& from, const GridMap& to,
   FloorCrossingSettings floor;
   floor.clearance_cells = settings.floor_crossing_clearance_cells;
   floor.floor_max_occupancy = settings.floor_crossing_floor_max_occupancy;
+  floor.known_around = settings.floor_crossing_known_around;
   const FloorCrossing ways[] = {
       floorCrossing(from, to, result.T_to_from, classes, floor),
       floorCrossing(to, from, result.T_to_from.inverse(), classes, floor)};

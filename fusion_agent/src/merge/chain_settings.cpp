@@ -64,6 +64,8 @@ ChainSettings loadChainSettings(const Config& chain) {
       "floor_crossing_clearance_cells", s.floor_crossing_clearance_cells, {0.0, 100.0});
   s.floor_crossing_floor_max_occupancy = static_cast<int>(chain.getInt(
       "floor_crossing_floor_max_occupancy", s.floor_crossing_floor_max_occupancy, {0, 100}));
+  s.floor_crossing_known_around =
+      chain.getBool("floor_crossing_known_around", s.floor_crossing_known_around);
   return s;
 }
 

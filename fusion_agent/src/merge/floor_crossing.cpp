@@ -25,16 +25,24 @@ std::vector<Cell> offsetsWithin(double radius) {
   return offsets;
 }
 
-bool wallWithin(const GridMap& map, const Cell& cell, const std::vector<Cell>& offsets,
-                const SimilaritySettings& classes) {
+// Whether the cells within the clearance of `cell` (`offsets`) hold no wall of `map` and, with
+// `known_around`, no unknown cell and none off the map either.
+bool clearFloorAround(const GridMap& map, const Cell& cell, const std::vector<Cell>& offsets,
+                      const SimilaritySettings& classes, bool known_around) {
   for (const Cell& offset : offsets) {
     const Cell near = cell + offset;
-    if (map.geometry.contains(near.x(), near.y()) &&
-        classes.isOccupied(map.at(near.x(), near.y()))) {
-      return true;
+    if (!map.geometry.contains(near.x(), near.y())) {
+      if (known_around) {
+        return false;
+      }
+      continue;
+    }
+    const int value = map.at(near.x(), near.y());
+    if (classes.isOccupied(value) || (known_around && !classes.isKnown(value))) {
+      return false;
     }
   }
-  return false;
+  return true;
 }
 
 bool before(const Cell& a, const Cell& b) {
@@ -99,7 +107,7 @@ FloorCrossing floorCrossing(const GridMap& own, const GridMap& other,
       }
       ++result.walls_on_known;
       if (value >= 0 && value <= settings.floor_max_occupancy &&
-          !wallWithin(other, cell, near_offsets, classes)) {
+          clearFloorAround(other, cell, near_offsets, classes, settings.known_around)) {
         crossing.push_back(cell);
       }
     }

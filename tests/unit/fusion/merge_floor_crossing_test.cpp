@@ -143,6 +143,45 @@ TEST(FloorCrossingTest, FloorThatFewBeamsCrossedDoesNotCount) {
   EXPECT_EQ(crossingAtIdentity(own, other).run_cells, 12);
 }
 
+// Whether every cell within `radius` of `cell` is on `map` and known.
+bool knownAround(const GridMap& map, const Eigen::Vector2i& cell, double radius) {
+  const SimilaritySettings classes;
+  for (int y = cell.y() - 10; y <= cell.y() + 10; ++y) {
+    for (int x = cell.x() - 10; x <= cell.x() + 10; ++x) {
+      const double distance = (Eigen::Vector2i(x, y) - cell).cast<double>().norm();
+      if (distance <= radius && (!map.geometry.contains(x, y) || !classes.isKnown(map.at(x, y)))) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+TEST(FloorCrossingTest, FloorAtTheOtherMapsFrontierDoesNotCount) {
+  GridMap own = room();
+  for (int x = 10; x < 22; ++x) {
+    own.at(x, 15) = GridMap::kOccupied;  // an inner wall the other room lacks
+  }
+  GridMap other = room();
+  for (int y = 17; y < 29; ++y) {
+    for (int x = 1; x < 39; ++x) {
+      other.at(x, y) = GridMap::kUnknown;  // the other robot saw the room up to row 16 only
+    }
+  }
+  // Row 15 lies 2 cells from the unknown cells of row 17, within the clearance: the inner wall may
+  // be one the other robot never saw.
+  EXPECT_EQ(crossingAtIdentity(own, other).run_cells, 0);
+  FloorCrossingSettings anywhere = kBars;
+  anywhere.known_around = false;
+  EXPECT_EQ(floorCrossing(own, other, GridTransform{}, SimilaritySettings{}, anywhere).run_cells,
+            12);
+  for (int x = 10; x < 22; ++x) {
+    own.at(x, 15) = GridMap::kFree;
+    own.at(x, 12) = GridMap::kOccupied;  // 5 cells from the unknown ones: inside what it saw
+  }
+  EXPECT_EQ(crossingAtIdentity(own, other).run_cells, 12);
+}
+
 // The measure as its definition reads: every wall against every wall for the clearance, and
 // runs grown by repeated passes over all crossing cells.
 FloorCrossing bruteForceCrossing(const GridMap& own, const GridMap& other,
@@ -182,7 +221,7 @@ FloorCrossing bruteForceCrossing(const GridMap& own, const GridMap& other,
       }
       const bool counted = std::find(crossing.begin(), crossing.end(), cell) != crossing.end();
       if (is_free && value <= bars.floor_max_occupancy && nearest > bars.clearance_cells &&
-          !counted) {
+          (!bars.known_around || knownAround(other, cell, bars.clearance_cells)) && !counted) {
         crossing.push_back(cell);
       }
     }
@@ -212,7 +251,7 @@ FloorCrossing bruteForceCrossing(const GridMap& own, const GridMap& other,
 }
 
 GridMap randomMap(std::mt19937& random, int width, int height, double wall_share) {
-  static constexpr std::int8_t kValues[] = {-1, -1, 0, 0, 0, 0, 0, 5, 12, 13, 30, 35, 36, 50, 65};
+  static constexpr std::int8_t kValues[] = {-1, 0, 0, 0, 0, 0, 0, 0, 5, 12, 13, 30, 35, 36, 50, 65};
   std::uniform_int_distribution<int> pick(0, static_cast<int>(std::size(kValues)) - 1);
   std::bernoulli_distribution walled(wall_share);
   GridMap map = merge_test::unknownMap(width, height);
@@ -237,6 +276,7 @@ TEST(FloorCrossingTest, EqualsABruteForceReferenceOnRandomGrids) {
     FloorCrossingSettings bars;
     bars.clearance_cells = clearances[trial % std::size(clearances)];
     bars.floor_max_occupancy = trial % 2 == 0 ? 12 : 35;
+    bars.known_around = trial % 3 != 0;
     const FloorCrossing fast = floorCrossing(own, other, T_other_own, SimilaritySettings{}, bars);
     const FloorCrossing reference = bruteForceCrossing(own, other, T_other_own, bars);
     EXPECT_EQ(fast.walls_on_known, reference.walls_on_known) << "trial " << trial;
@@ -272,17 +312,21 @@ TEST(MergeChainFloorCrossingTest, TheSettingsAreReadAndRangeChecked) {
   EXPECT_DOUBLE_EQ(defaults.floor_crossing_min_share, 0.015);
   EXPECT_DOUBLE_EQ(defaults.floor_crossing_clearance_cells, 2.5);
   EXPECT_EQ(defaults.floor_crossing_floor_max_occupancy, 12);
+  EXPECT_TRUE(defaults.floor_crossing_known_around);
+  EXPECT_TRUE(FloorCrossingSettings{}.known_around);
   EXPECT_EQ(defaults.floor_crossing_floor_max_occupancy,
             FloorCrossingSettings{}.floor_max_occupancy);
   const Config config = Config::loadString(
       "floor_crossing_min_cells: 8\nfloor_crossing_min_share: 0.02\n"
-      "floor_crossing_clearance_cells: 1.5\nfloor_crossing_floor_max_occupancy: 30\n",
+      "floor_crossing_clearance_cells: 1.5\nfloor_crossing_floor_max_occupancy: 30\n"
+      "floor_crossing_known_around: false\n",
       "chain.yaml");
   const ChainSettings read = loadChainSettings(config);
   EXPECT_EQ(read.floor_crossing_min_cells, 8);
   EXPECT_DOUBLE_EQ(read.floor_crossing_min_share, 0.02);
   EXPECT_DOUBLE_EQ(read.floor_crossing_clearance_cells, 1.5);
   EXPECT_EQ(read.floor_crossing_floor_max_occupancy, 30);
+  EXPECT_FALSE(read.floor_crossing_known_around);
   EXPECT_THROW(
       loadChainSettings(Config::loadString("floor_crossing_floor_max_occupancy: 101\n", "c.yaml")),
       ConfigError);

@@ -143,6 +143,9 @@ struct ChainSettings {
   /// ... on the other map's cells of at most this occupancy (percent): floor that only a few
   /// beams crossed (a door open in one map and shut in the other) does not count.
   int floor_crossing_floor_max_occupancy = 12;
+  /// ... whose cells within the clearance are all known: floor at the other map's frontier (where
+  /// it may end at a wall the other robot never saw, or at a crop's window) does not count.
+  bool floor_crossing_known_around = true;
 };
 
 class ChainMerger : public MapMerger {

@@ -14,10 +14,12 @@
 // A crossing cell is a cell of `other` that a wall of `own` lands on (rounded to the nearest
 // cell), which `other` holds as certain open floor (occupancy at most `floor_max_occupancy`, below
 // the free class's bar) and which lies farther than `clearance_cells` from every wall of `other`
-// (so a wall drawn a cell or two apart in the two maps does not count). The crossing is the
-// largest 8-connected run of such cells, and its share the run over the walls of `own` that land
-// on known cells of `other`. On crops of one map, a wrong room crosses the floor with a large
-// share of its few overlapping walls and a right placement hardly at all.
+// (so a wall drawn a cell or two apart in the two maps does not count), with every cell within
+// that clearance known to `other` (`known_around`: floor at `other`'s frontier may end at a wall
+// `other` never saw, or at the window of a crop). The crossing is the largest 8-connected run of
+// such cells, and its share the run over the walls of `own` that land on known cells of `other`.
+// On crops of one map, a wrong room crosses the floor with a large share of its few overlapping
+// walls and a right placement hardly at all.
 //
 // Real team maps of one building hold long runs too. While the ACES team's maps grow, a robot's
 // map holds corridor and room floor that a few beams crossed (occupancy 17-31: two to four more
@@ -52,6 +54,9 @@ struct FloorCrossingSettings {
   /// Cells of `other` of at most this occupancy (percent) are open floor; cells of the free class
   /// above it (floor few beams crossed) are not.
   int floor_max_occupancy = 12;
+  /// Only floor whose cells within the clearance are all known (none unknown, none off the map)
+  /// counts: floor at `other`'s frontier may end at a wall `other` never saw.
+  bool known_around = true;
 };
 
 /// The walls of `own` placed on `other` by T_other_own, measured as above.
