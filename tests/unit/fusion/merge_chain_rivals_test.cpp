@@ -212,8 +212,7 @@ TEST(MergeChainRivalsTest, TheConfiguredChainDoesNotAcceptTheWrongWing) {
   // Every rival counted (the wrong wing refuses the truth), the chain's own checks decide.
   const std::string unchecked =
       "slid_rivals: false, sweep_rivals: false, cleaner_alternative_rate: 0";
-  const MergeResult wrong =
-      mergeWingWith(merge_case, std::string(unchecked) + ", floor_crossing_min_cells: 0");
+  const MergeResult wrong = mergeWingWith(merge_case, unchecked + ", floor_crossing_min_cells: 0");
   ASSERT_TRUE(wrong.accepted) << "without the earlier rival, the sweep, the alternatives and the "
                                  "floor-crossing check the wrong wing is taken";
   EXPECT_GT(caseError(merge_case, wrong.T_to_from).distance_cells, 80.0);
@@ -225,7 +224,7 @@ TEST(MergeChainRivalsTest, TheConfiguredChainDoesNotAcceptTheWrongWing) {
   EXPECT_FALSE(weighed.accepted) << "the exhaustive search's own hypotheses hold the truth";
   EXPECT_NE(weighed.reason.find("another placement"), std::string::npos) << weighed.reason;
   const MergeResult crossing =
-      mergeWingWith(merge_case, std::string(unchecked) + ", floor_crossing_min_cells: 4");
+      mergeWingWith(merge_case, unchecked + ", floor_crossing_min_cells: 4");
   EXPECT_FALSE(crossing.accepted) << "the wrong wing's walls cross the other map's open floor";
   EXPECT_NE(crossing.reason.find("crosses the other's open floor"), std::string::npos)
       << crossing.reason;

@@ -27,7 +27,7 @@ using merge_test::chainFrom;
 using merge_test::CropPair;
 using merge_test::cut;
 
-const FloorCrossingSettings kBars{};  // a clearance of 2.5 cells, floor of occupancy ≤ 20
+const FloorCrossingSettings kBars{};  // a clearance of 2.5 cells, floor of occupancy ≤ 12
 
 // A 40 × 30 room: walls on the border, free inside.
 GridMap room() {
@@ -38,6 +38,22 @@ GridMap room() {
       map.at(x, y) = border ? GridMap::kOccupied : GridMap::kFree;
     }
   }
+  return map;
+}
+
+// Cells x0 ≤ x < x1, y0 ≤ y < y1 of `map` set to `value`.
+void fill(GridMap& map, int x0, int x1, int y0, int y1, std::int8_t value) {
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      map.at(x, y) = value;
+    }
+  }
+}
+
+// The room with a wall of 12 cells through its middle (row 15, x = 10..21) that room() lacks.
+GridMap roomWithInnerWall() {
+  GridMap map = room();
+  fill(map, 10, 22, 15, 16, GridMap::kOccupied);
   return map;
 }
 
@@ -65,10 +81,7 @@ TEST(FloorCrossingTest, TheSameRoomCrossesNoFloor) {
 }
 
 TEST(FloorCrossingTest, AnInnerWallTheOtherRoomLacksIsOneRun) {
-  GridMap own = room();
-  for (int x = 10; x < 22; ++x) {
-    own.at(x, 15) = GridMap::kOccupied;  // 12 cells through the middle of the room
-  }
+  GridMap own = roomWithInnerWall();
   for (int y = 5; y < 9; ++y) {
     own.at(30, y) = GridMap::kOccupied;  // and a post of 4 cells apart from it
   }
@@ -93,16 +106,9 @@ TEST(FloorCrossingTest, WallsWithinTheClearanceOfTheOtherWallsDoNotCount) {
 }
 
 TEST(FloorCrossingTest, WallsOnTheOtherMapsUnknownCellsAreNotCounted) {
-  GridMap own = room();
-  for (int x = 10; x < 22; ++x) {
-    own.at(x, 15) = GridMap::kOccupied;
-  }
+  const GridMap own = roomWithInnerWall();
   GridMap other = room();
-  for (int y = 10; y < 20; ++y) {
-    for (int x = 5; x < 30; ++x) {
-      other.at(x, y) = GridMap::kUnknown;  // the other robot never saw the room's middle
-    }
-  }
+  fill(other, 5, 30, 10, 20, GridMap::kUnknown);  // the other robot never saw the room's middle
   const FloorCrossing crossing = crossingAtIdentity(own, other);
   EXPECT_EQ(crossing.run_cells, 0);
   EXPECT_EQ(crossing.walls_on_known, wallCount(own) - 12);
@@ -121,25 +127,17 @@ TEST(FloorCrossingTest, AShiftedPlacementIsMeasuredWhereItLands) {
 }
 
 TEST(FloorCrossingTest, FloorThatFewBeamsCrossedDoesNotCount) {
-  GridMap own = room();
-  for (int x = 10; x < 22; ++x) {
-    own.at(x, 15) = GridMap::kOccupied;
-  }
+  const GridMap own = roomWithInnerWall();
   GridMap other = room();
-  for (int y = 1; y < 29; ++y) {
-    for (int x = 1; x < 39; ++x) {
-      other.at(x, y) = 17;  // free class, but four misses more than hits: a door, a person
-    }
-  }
+  fill(other, 1, 39, 1, 29, 17);  // free class, but four misses more than hits: a door, a person
   const FloorCrossing few_beams = crossingAtIdentity(own, other);
   EXPECT_EQ(few_beams.run_cells, 0);
   EXPECT_EQ(few_beams.walls_on_known, wallCount(own));  // still known cells
   FloorCrossingSettings looser = kBars;
   looser.floor_max_occupancy = 17;
   EXPECT_EQ(floorCrossing(own, other, GridTransform{}, SimilaritySettings{}, looser).run_cells, 12);
-  for (int x = 10; x < 22; ++x) {
-    other.at(x, 15) = static_cast<std::int8_t>(kBars.floor_max_occupancy);  // the bar counts
-  }
+  fill(other, 10, 22, 15, 16,
+       static_cast<std::int8_t>(kBars.floor_max_occupancy));  // the bar counts
   EXPECT_EQ(crossingAtIdentity(own, other).run_cells, 12);
 }
 
@@ -158,16 +156,9 @@ bool knownAround(const GridMap& map, const Eigen::Vector2i& cell, double radius)
 }
 
 TEST(FloorCrossingTest, FloorAtTheOtherMapsFrontierDoesNotCount) {
-  GridMap own = room();
-  for (int x = 10; x < 22; ++x) {
-    own.at(x, 15) = GridMap::kOccupied;  // an inner wall the other room lacks
-  }
+  GridMap own = roomWithInnerWall();
   GridMap other = room();
-  for (int y = 17; y < 29; ++y) {
-    for (int x = 1; x < 39; ++x) {
-      other.at(x, y) = GridMap::kUnknown;  // the other robot saw the room up to row 16 only
-    }
-  }
+  fill(other, 1, 39, 17, 29, GridMap::kUnknown);  // the other robot saw the room up to row 16
   // Row 15 lies 2 cells from the unknown cells of row 17, within the clearance: the inner wall may
   // be one the other robot never saw.
   EXPECT_EQ(crossingAtIdentity(own, other).run_cells, 0);
