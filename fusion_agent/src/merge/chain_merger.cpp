@@ -177,6 +177,11 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
       timeBlock(times_, "chain/second_opinion",
                 [&] { askSecondOpinion(from, to, *step, second, result); });
     }
+    if (result.accepted && settings_.neighbour_basin_min_v_gain < 1.0) {
+      timeBlock(times_, "chain/neighbour_basins", [&] {
+        refuseWhereANeighbourPeaksHigher(from, to, settings_, judge_.settings().similarity, result);
+      });
+    }
     if (result.accepted) {
       result.trials = trials;
       if (settings_.refine_psi) {
@@ -558,6 +563,27 @@ void refuseWhereWallsCrossFloor(const GridMap& from, const GridMap& to,
     result.reason = reason.str();
     return;
   }
+}
+
+void refuseWhereANeighbourPeaksHigher(const GridMap& from, const GridMap& to,
+                                      const ChainSettings& settings,
+                                      const SimilaritySettings& classes, MergeResult& result) {
+  if (!result.accepted || settings.neighbour_basin_min_v_gain >= 1.0) {
+    return;
+  }
+  const NeighbourBasins basins =
+      neighbourBasins(from, to, classes, result.T_to_from, settings.neighbour_basins);
+  if (basins.other_v <= basins.own_v + settings.neighbour_basin_min_v_gain) {
+    return;
+  }
+  std::ostringstream reason;
+  reason << "V peaks higher " << basins.other_cells << " cells and " << basins.other_deg
+         << " degrees away (" << basins.other_v << " against " << basins.own_v
+         << " at the accepted transform's peak; bar +" << settings.neighbour_basin_min_v_gain
+         << ")";
+  result.accepted = false;
+  result.refusal = MergeRefusal::kRival;
+  result.reason = reason.str();
 }
 
 void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,

@@ -66,6 +66,15 @@ ChainSettings loadChainSettings(const Config& chain) {
       "floor_crossing_floor_max_occupancy", s.floor_crossing_floor_max_occupancy, {0, 100}));
   s.floor_crossing_known_around =
       chain.getBool("floor_crossing_known_around", s.floor_crossing_known_around);
+  s.neighbour_basin_min_v_gain =
+      chain.getDouble("neighbour_basin_min_v_gain", s.neighbour_basin_min_v_gain, {0.0, 1.0});
+  NeighbourBasinSettings& basins = s.neighbour_basins;
+  basins.turn_steps =
+      static_cast<int>(chain.getInt("neighbour_basin_turn_steps", basins.turn_steps, {0, 20}));
+  basins.shift_steps =
+      static_cast<int>(chain.getInt("neighbour_basin_shift_steps", basins.shift_steps, {0, 20}));
+  basins.climbs =
+      static_cast<int>(chain.getInt("neighbour_basin_climbs", basins.climbs, {0, 1000}));
   return s;
 }
 

@@ -161,10 +161,10 @@ TEST(BlockTimesTest, TheDefaultChainTimesItsStepsAndItsChecks) {
   EXPECT_EQ(placed.result.method, "exhaustive");
   EXPECT_EQ(
       namesOf(chain->lastBlockTimes()),
-      (std::vector<std::string>{"exhaustive/prepare", "exhaustive/search", "exhaustive/judge",
-                                "exhaustive/other_way", "exhaustive/alignment", "exhaustive/rest",
-                                "chain/floor_crossing", "chain/sweep", "chain/turns",
-                                "chain/alternatives", "chain/second_opinion"}));
+      (std::vector<std::string>{
+          "exhaustive/prepare", "exhaustive/search", "exhaustive/judge", "exhaustive/other_way",
+          "exhaustive/alignment", "exhaustive/rest", "chain/floor_crossing", "chain/sweep",
+          "chain/turns", "chain/alternatives", "chain/second_opinion", "chain/neighbour_basins"}));
   expectWithinTheMerge(chain->lastBlockTimes(), placed.ms);
   const TimedResult refused = timedMerge(*chain, merge_test::cut(kRefusedByEveryStep));
   EXPECT_FALSE(refused.result.accepted);

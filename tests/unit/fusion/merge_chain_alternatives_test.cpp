@@ -101,9 +101,9 @@ const CropPair kRightMergeWithASlidUnwalledFit{
     {{411, 467}, 214, 0.923286592443989, {8, 17}, {28, 24}},
     {{446, 539}, 171, -2.582374494537391, {5, 25}, {23, 17}}};
 
-// The floor-crossing check off (a chain section's key): it refuses the wrong placements below
-// too, and the checks under test are the others.
-const std::string kFloorOff = "floor_crossing_min_cells: 0";
+// The floor-crossing and V-basin checks off (a chain section's keys): they refuse wrong
+// placements below too, and the checks under test are the others.
+const std::string kFloorOff = "floor_crossing_min_cells: 0, neighbour_basin_min_v_gain: 1";
 
 std::unique_ptr<MapMerger> chainWith(const std::string& chain_section) {
   return merge_test::chainFrom("chain: {" + chain_section + "}\n");

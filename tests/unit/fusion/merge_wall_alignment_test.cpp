@@ -295,6 +295,9 @@ const merge_test::CropPair kNearMisses[] = {
 // The exhaustive merger's own checks as they were before the eleventh session.
 constexpr const char* kOwnChecks =
     "exhaustive: {check_own_score: true, max_turn_ambiguity: 0.97}\n";
+// The chain's V-basin check off (neighbour_basins.hpp): it refuses the near misses below as well,
+// and these tests show what the alignment does.
+constexpr const char* kBasinsOff = "chain: {neighbour_basin_min_v_gain: 1}\n";
 
 TEST(WallAlignmentTest, TheChainsNearMissesOnRealCropsEndWithinACellAndHalfADegree) {
   for (const merge_test::CropPair& pair : kNearMisses) {
@@ -315,9 +318,10 @@ TEST(WallAlignmentTest, WithoutItTheSameCropsEndOutsideTheTolerance) {
   const MergeCase merge_case = merge_test::cut(kNearMisses[0]);
   // With the exhaustive merger's own checks on (off since the eleventh session), as when the
   // alignment was added: without them the chain now takes another hypothesis of this case.
-  const Config config = Config::loadString(
-      std::string(kOwnChecks) + "seed:\n  wall_alignment: false\n  settle_alignment: false\n",
-      "merge.yaml");
+  const Config config = Config::loadString(std::string(kOwnChecks) + kBasinsOff +
+                                               "seed:\n  wall_alignment: false\n"
+                                               "  settle_alignment: false\n",
+                                           "merge.yaml");
   const auto chain = makeMergerFrom("chain", config);
   const MergeResult result = chain->merge(merge_case.a, merge_case.b);
   ASSERT_TRUE(result.accepted) << result.reason;
@@ -364,7 +368,8 @@ TEST(WallAlignmentTest, FromTheBestGridPointAloneTheSameCropsEndOutsideTheTolera
     MRSLAM_REQUIRE_SHARED_DATA(std::string("maps/") + pair.map);
     const MergeCase merge_case = merge_test::cut(pair);
     const MergeResult result =
-        merge_test::chainWithSeed("wall_alignment_starts: 1")->merge(merge_case.a, merge_case.b);
+        merge_test::chainFrom(std::string(kBasinsOff) + "seed: {wall_alignment_starts: 1}\n")
+            ->merge(merge_case.a, merge_case.b);
     ASSERT_TRUE(result.accepted) << "case " << pair.case_id << ": " << result.reason;
     EXPECT_GT(caseError(merge_case, result.T_to_from).angle_rad, 1.0 * kDeg)
         << "case " << pair.case_id;
@@ -384,7 +389,8 @@ TEST(WallAlignmentTest, ARotationGuessedAtTheFirstClimbsPeakRefusesTheMerge) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
   const MergeCase merge_case = merge_test::cut(kGuessedAtTheFirstPeak);
   const MergeResult found =
-      merge_test::chainWithSeed("wall_alignment: false")->merge(merge_case.a, merge_case.b);
+      merge_test::chainFrom(std::string(kBasinsOff) + "seed: {wall_alignment: false}\n")
+          ->merge(merge_case.a, merge_case.b);
   ASSERT_TRUE(found.accepted) << found.reason;
   ASSERT_FALSE(isCorrect(caseError(merge_case, found.T_to_from)));
   const WallAlignmentSettings settings;

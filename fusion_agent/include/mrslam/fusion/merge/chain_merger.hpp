@@ -26,7 +26,11 @@
 // (the seed pipeline), run as well, ends within the wall alignment's window of it and finds there
 // that the walls do not fix the rotation. With `floor_crossing_min_cells` (on by default), a step's
 // transform is refused where the walls of one map run across the other's certain open floor
-// (floor_crossing.hpp): a room that looks alike, placed along a corridor or turned.
+// (floor_crossing.hpp): a room that looks alike, placed along a corridor or turned. With
+// `neighbour_basin_min_v_gain` (on by default), the transform the checks accepted is refused
+// where V peaks higher, by more than that, in another basin a few cells and degrees away that
+// keeps most of the overlap (neighbour_basins.hpp): the searches left it in the basin of a
+// placement a little off.
 
 #include <cmath>
 #include <memory>
@@ -35,6 +39,7 @@
 
 #include "mrslam/common/config.hpp"
 #include "mrslam/fusion/merge/map_merger.hpp"
+#include "mrslam/fusion/merge/neighbour_basins.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
 #include "mrslam/fusion/merge/seed_merger.hpp"
 
@@ -146,6 +151,12 @@ struct ChainSettings {
   /// ... whose cells within the clearance are all known: floor at the other map's frontier (where
   /// it may end at a wall the other robot never saw, or at a crop's window) does not count.
   bool floor_crossing_known_around = true;
+  /// The transform a step's checks accepted is refused when V peaks higher in another basin a few
+  /// cells and degrees away (neighbour_basins.hpp) by more than this: the searches left it in the
+  /// basin of a placement a little off (docs/merge_tuning.md, forty-eighth session). 1 or more:
+  /// off.
+  double neighbour_basin_min_v_gain = 0.002;
+  NeighbourBasinSettings neighbour_basins;  ///< the grid around the transform and the climbs
 };
 
 class ChainMerger : public MapMerger {
@@ -274,6 +285,12 @@ void refuseWhereWallsCrossFloor(const GridMap& from, const GridMap& to,
 
 /// Refines an accepted result by ψ (see ChainSettings), cells classed by `classes` as the judge
 /// classes them; `method` gains "+psi" when it is kept.
+/// Refuses an accepted `result` whose V peaks higher in another basin nearby by more than
+/// settings.neighbour_basin_min_v_gain (neighbour_basins.hpp); the reason gives both peaks.
+void refuseWhereANeighbourPeaksHigher(const GridMap& from, const GridMap& to,
+                                      const ChainSettings& settings,
+                                      const SimilaritySettings& classes, MergeResult& result);
+
 void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,
                  const SimilaritySettings& classes, MergeResult& result);
 
