@@ -12,26 +12,29 @@ constexpr double kDegToRad = M_PI / 180.0;
 /// V of the samples at transforms of `from`, each turned about one pivot.
 class VAtTransforms {
  public:
-  VAtTransforms(const std::vector<CellSample>& known_from, const CodeImage& to,
-                const ComparisonTables& tables)
-      : known_from_(known_from), to_(to), tables_(tables) {
-    for (const CellSample& cell : known_from) {
+  /// `samples` of `from`; at() scores only transforms that keep `min_overlap_share` of their
+  /// overlap at `accepted` (a basin that slides the overlap off scores V trivially high).
+  VAtTransforms(const std::vector<CellSample>& samples, const CodeImage& to,
+                const ComparisonTables& tables, const GridTransform& accepted,
+                double min_overlap_share)
+      : samples_(samples), to_(to), tables_(tables) {
+    for (const CellSample& cell : samples) {
       pivot_ += Eigen::Vector2d(cell.x, cell.y);
     }
-    if (!known_from.empty()) {
-      pivot_ /= static_cast<double>(known_from.size());
+    if (!samples.empty()) {
+      pivot_ /= static_cast<double>(samples.size());
     }
+    const auto overlap = compareAt(samples, to, accepted, tables, false).overlap();
+    least_overlap_ =
+        static_cast<long long>(std::ceil(min_overlap_share * static_cast<double>(overlap)));
   }
 
-  /// V at T_to_from, or -1 where the overlap is below `least_overlap` known cells.
+  /// V at T_to_from, or -1 where the overlap is below the least.
   double at(const GridTransform& T_to_from) {
     ++comparisons_;
-    const Agreement agreement = compareAt(known_from_, to_, T_to_from, tables_, false);
-    return agreement.overlap() >= least_overlap ? verificationIndex(agreement) : -1.0;
+    const Agreement agreement = compareAt(samples_, to_, T_to_from, tables_, false);
+    return agreement.overlap() >= least_overlap_ ? verificationIndex(agreement) : -1.0;
   }
-
-  /// The least overlap at() scores (a basin that slides the overlap off scores V trivially high).
-  long long least_overlap = 0;
 
   /// T_to_from turned by `turn_rad` about the pivot, then shifted by `shift`.
   GridTransform moved(const GridTransform& T_to_from, double turn_rad,
@@ -51,10 +54,11 @@ class VAtTransforms {
   int comparisons() const { return comparisons_; }
 
  private:
-  const std::vector<CellSample>& known_from_;
+  const std::vector<CellSample>& samples_;
   const CodeImage& to_;
   const ComparisonTables& tables_;
   Eigen::Vector2d pivot_ = Eigen::Vector2d::Zero();
+  long long least_overlap_ = 0;
   int comparisons_ = 0;
 };
 
@@ -134,10 +138,7 @@ NeighbourBasins neighbourBasins(const std::vector<CellSample>& known_from, const
                                 const ComparisonTables& tables, const GridTransform& T_to_from,
                                 const NeighbourBasinSettings& settings) {
   const std::vector<CellSample> samples = everyNth(known_from, settings.sampled_cells);
-  VAtTransforms v_at(samples, to, tables);
-  const auto sampled_overlap = compareAt(samples, to, T_to_from, tables, false).overlap();
-  v_at.least_overlap = static_cast<long long>(
-      std::ceil(settings.min_overlap_share * static_cast<double>(sampled_overlap)));
+  VAtTransforms v_at(samples, to, tables, T_to_from, settings.min_overlap_share);
   const Peak own = climb(v_at, T_to_from, v_at.at(T_to_from), settings);
   Peak other{own.T_to_from, -1.0};
   const std::vector<Peak> points = gridPoints(v_at, T_to_from, settings);

@@ -283,14 +283,14 @@ void refuseWhereWallsCrossFloor(const GridMap& from, const GridMap& to,
                                 const ChainSettings& settings, const SimilaritySettings& classes,
                                 MergeResult& result);
 
-/// Refines an accepted result by ψ (see ChainSettings), cells classed by `classes` as the judge
-/// classes them; `method` gains "+psi" when it is kept.
 /// Refuses an accepted `result` whose V peaks higher in another basin nearby by more than
 /// settings.neighbour_basin_min_v_gain (neighbour_basins.hpp); the reason gives both peaks.
 void refuseWhereANeighbourPeaksHigher(const GridMap& from, const GridMap& to,
                                       const ChainSettings& settings,
                                       const SimilaritySettings& classes, MergeResult& result);
 
+/// Refines an accepted result by ψ (see ChainSettings), cells classed by `classes` as the judge
+/// classes them; `method` gains "+psi" when it is kept.
 void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& settings,
                  const SimilaritySettings& classes, MergeResult& result);
 

@@ -8,11 +8,12 @@
 // leave it in a basin 3-10 cells and 1-4 degrees from the truth's, where walls still meet walls
 // but V is lower. This climbs V from the accepted transform (its own basin's peak) and from the
 // best `climbs` points of a grid of turns (±turn_steps × turn_step_deg about the centroid of
-// `from`'s known cells) and shifts (±shift_steps × shift_step_cells on each axis) around it, and
-// reports the highest peak more than `distinct_cells` from the own one. Climbs and peaks keep at
-// least `min_overlap_share` of the overlap at the accepted transform: V of a placement that
-// slides most of the overlap off is high for want of cells to disagree (right merges of seed 232:
-// V 1.0 ten cells away, 0.995 thirteen cells away, against 0.977 and 0.976 at the right transform).
+// the sampled known cells of `from`) and shifts (±shift_steps × shift_step_cells on each axis)
+// around it, and reports the highest peak more than `distinct_cells` from the own one. Climbs and
+// peaks keep at least `min_overlap_share` of the overlap at the accepted transform: V of a
+// placement that slides most of the overlap off is high for want of cells to disagree (right merges
+// of seed 232: V 1.0 ten cells away, 0.995 thirteen cells away, against 0.977 and 0.976 at the
+// right transform).
 //
 // A scratch probe (scoring V with the case tools' scoreOverlap, a grid of ±4° and ±8 cells, five
 // climbs) found on 160 right merges of the default chain (seeds 231-250, drawn at random) no other
