@@ -178,9 +178,8 @@ MergeResult ChainMerger::merge(const GridMap& from, const GridMap& to) {
                 [&] { askSecondOpinion(from, to, *step, second, result); });
     }
     if (result.accepted && settings_.neighbour_basin_min_v_gain < 1.0) {
-      timeBlock(times_, "chain/neighbour_basins", [&] {
-        refuseWhereANeighbourPeaksHigher(from, to, settings_, judge_.settings().similarity, result);
-      });
+      timeBlock(times_, "chain/neighbour_basins",
+                [&] { refuseWhereANeighbourPeaksHigher(from, to, settings_, judge_, result); });
     }
     if (result.accepted) {
       result.trials = trials;
@@ -539,13 +538,9 @@ void refuseWhereWallsCrossFloor(const GridMap& from, const GridMap& to,
   if (!result.accepted || settings.floor_crossing_min_cells <= 0) {
     return;
   }
-  FloorCrossingSettings floor;
-  floor.clearance_cells = settings.floor_crossing_clearance_cells;
-  floor.floor_max_occupancy = settings.floor_crossing_floor_max_occupancy;
-  floor.known_around = settings.floor_crossing_known_around;
   const FloorCrossing ways[] = {
-      floorCrossing(from, to, result.T_to_from, classes, floor),
-      floorCrossing(to, from, result.T_to_from.inverse(), classes, floor)};
+      floorCrossing(from, to, result.T_to_from, classes, settings.floor_crossing),
+      floorCrossing(to, from, result.T_to_from.inverse(), classes, settings.floor_crossing)};
   for (int way = 0; way < 2; ++way) {
     const FloorCrossing& crossing = ways[way];
     if (crossing.run_cells < settings.floor_crossing_min_cells ||
@@ -566,13 +561,13 @@ void refuseWhereWallsCrossFloor(const GridMap& from, const GridMap& to,
 }
 
 void refuseWhereANeighbourPeaksHigher(const GridMap& from, const GridMap& to,
-                                      const ChainSettings& settings,
-                                      const SimilaritySettings& classes, MergeResult& result) {
+                                      const ChainSettings& settings, SeedMerger& judge,
+                                      MergeResult& result) {
   if (!result.accepted || settings.neighbour_basin_min_v_gain >= 1.0) {
     return;
   }
   const NeighbourBasins basins =
-      neighbourBasins(from, to, classes, result.T_to_from, settings.neighbour_basins);
+      judge.neighbourBasinsAt(from, to, result.T_to_from, settings.neighbour_basins);
   if (basins.other_v <= basins.own_v + settings.neighbour_basin_min_v_gain) {
     return;
   }

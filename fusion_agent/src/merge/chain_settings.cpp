@@ -60,12 +60,12 @@ ChainSettings loadChainSettings(const Config& chain) {
       chain.getInt("floor_crossing_min_cells", s.floor_crossing_min_cells, {0, 100000000}));
   s.floor_crossing_min_share =
       chain.getDouble("floor_crossing_min_share", s.floor_crossing_min_share, {0.0, 1.0});
-  s.floor_crossing_clearance_cells = chain.getDouble(
-      "floor_crossing_clearance_cells", s.floor_crossing_clearance_cells, {0.0, 100.0});
-  s.floor_crossing_floor_max_occupancy = static_cast<int>(chain.getInt(
-      "floor_crossing_floor_max_occupancy", s.floor_crossing_floor_max_occupancy, {0, 100}));
-  s.floor_crossing_known_around =
-      chain.getBool("floor_crossing_known_around", s.floor_crossing_known_around);
+  FloorCrossingSettings& floor = s.floor_crossing;
+  floor.clearance_cells =
+      chain.getDouble("floor_crossing_clearance_cells", floor.clearance_cells, {0.0, 100.0});
+  floor.floor_max_occupancy = static_cast<int>(
+      chain.getInt("floor_crossing_floor_max_occupancy", floor.floor_max_occupancy, {0, 100}));
+  floor.known_around = chain.getBool("floor_crossing_known_around", floor.known_around);
   s.neighbour_basin_min_v_gain =
       chain.getDouble("neighbour_basin_min_v_gain", s.neighbour_basin_min_v_gain, {0.0, 1.0});
   NeighbourBasinSettings& basins = s.neighbour_basins;

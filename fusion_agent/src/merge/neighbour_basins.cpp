@@ -78,6 +78,7 @@ std::vector<CellSample> everyNth(const std::vector<CellSample>& cells, int count
 struct Peak {
   GridTransform T_to_from;
   double v = 0.0;
+  bool climbed = false;  ///< a climb moved it from where it started
 };
 
 /// The pattern search of V from `start` (neighbour_basins.hpp).
@@ -98,7 +99,7 @@ Peak climb(VAtTransforms& v_at, const GridTransform& start, double start_v,
     for (const GridTransform& step : steps) {
       const double v = v_at.at(step);
       if (v > peak.v) {
-        peak = {step, v};
+        peak = {step, v, true};
         moved = true;
       }
     }
@@ -157,7 +158,7 @@ NeighbourBasins neighbourBasins(const std::vector<CellSample>& known_from, const
   };
   // The accepted transform itself where the sample's peak is lower over all known cells.
   const Agreement at_accepted = full(T_to_from);
-  const Agreement at_own = full(own.T_to_from);
+  const Agreement at_own = own.climbed ? full(own.T_to_from) : at_accepted;
   const bool own_higher = verificationIndex(at_own) > verificationIndex(at_accepted);
   basins.own = own_higher ? own.T_to_from : T_to_from;
   basins.own_v = verificationIndex(own_higher ? at_own : at_accepted);

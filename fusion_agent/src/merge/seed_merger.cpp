@@ -364,6 +364,16 @@ void SeedMerger::alignOnInputs(const GridMap& from, const GridMap& to, MergeResu
   alignOn(*searchInputsOf(from, to), from, to, nullptr, result);
 }
 
+NeighbourBasins SeedMerger::neighbourBasinsAt(const GridMap& from, const GridMap& to,
+                                              const GridTransform& T_to_from,
+                                              const NeighbourBasinSettings& settings) {
+  if (!inputRefusal(from, to).empty()) {
+    return neighbourBasins(from, to, settings_.similarity, T_to_from, settings);
+  }
+  const std::shared_ptr<const seed::SearchInputs> held = searchInputsOf(from, to);
+  return neighbourBasins(held->all_samples, held->to, tables_, T_to_from, settings);
+}
+
 void SeedMerger::alignOn(const seed::SearchInputs& inputs, const GridMap& from, const GridMap& to,
                          const Agreement* at_found, MergeResult& result) const {
   if (inputs.walls_from && inputs.walls_to) {  // block 8's fields, when it settled on them

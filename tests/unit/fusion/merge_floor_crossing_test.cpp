@@ -301,12 +301,9 @@ TEST(MergeChainFloorCrossingTest, TheSettingsAreReadAndRangeChecked) {
   const ChainSettings defaults;
   EXPECT_EQ(defaults.floor_crossing_min_cells, 4);  // on: see docs/merge_tuning.md
   EXPECT_DOUBLE_EQ(defaults.floor_crossing_min_share, 0.015);
-  EXPECT_DOUBLE_EQ(defaults.floor_crossing_clearance_cells, 2.5);
-  EXPECT_EQ(defaults.floor_crossing_floor_max_occupancy, 12);
-  EXPECT_TRUE(defaults.floor_crossing_known_around);
-  EXPECT_TRUE(FloorCrossingSettings{}.known_around);
-  EXPECT_EQ(defaults.floor_crossing_floor_max_occupancy,
-            FloorCrossingSettings{}.floor_max_occupancy);
+  EXPECT_DOUBLE_EQ(defaults.floor_crossing.clearance_cells, 2.5);
+  EXPECT_EQ(defaults.floor_crossing.floor_max_occupancy, 12);
+  EXPECT_TRUE(defaults.floor_crossing.known_around);
   const Config config = Config::loadString(
       "floor_crossing_min_cells: 8\nfloor_crossing_min_share: 0.02\n"
       "floor_crossing_clearance_cells: 1.5\nfloor_crossing_floor_max_occupancy: 30\n"
@@ -315,9 +312,9 @@ TEST(MergeChainFloorCrossingTest, TheSettingsAreReadAndRangeChecked) {
   const ChainSettings read = loadChainSettings(config);
   EXPECT_EQ(read.floor_crossing_min_cells, 8);
   EXPECT_DOUBLE_EQ(read.floor_crossing_min_share, 0.02);
-  EXPECT_DOUBLE_EQ(read.floor_crossing_clearance_cells, 1.5);
-  EXPECT_EQ(read.floor_crossing_floor_max_occupancy, 30);
-  EXPECT_FALSE(read.floor_crossing_known_around);
+  EXPECT_DOUBLE_EQ(read.floor_crossing.clearance_cells, 1.5);
+  EXPECT_EQ(read.floor_crossing.floor_max_occupancy, 30);
+  EXPECT_FALSE(read.floor_crossing.known_around);
   EXPECT_THROW(
       loadChainSettings(Config::loadString("floor_crossing_floor_max_occupancy: 101\n", "c.yaml")),
       ConfigError);

@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "mrslam/common/config.hpp"
+#include "mrslam/fusion/merge/floor_crossing.hpp"
 #include "mrslam/fusion/merge/map_merger.hpp"
 #include "mrslam/fusion/merge/neighbour_basins.hpp"
 #include "mrslam/fusion/merge/overlap_score.hpp"
@@ -143,14 +144,11 @@ struct ChainSettings {
   /// 0 cells: off.
   int floor_crossing_min_cells = 4;
   double floor_crossing_min_share = 0.015;
-  /// Crossing cells lie farther than this from the other map's walls (cells).
-  double floor_crossing_clearance_cells = 2.5;
-  /// ... on the other map's cells of at most this occupancy (percent): floor that only a few
-  /// beams crossed (a door open in one map and shut in the other) does not count.
-  int floor_crossing_floor_max_occupancy = 12;
-  /// ... whose cells within the clearance are all known: floor at the other map's frontier (where
-  /// it may end at a wall the other robot never saw, or at a crop's window) does not count.
-  bool floor_crossing_known_around = true;
+  /// What counts as crossing: the clearance from the other map's walls, the occupancy of open
+  /// floor, and whether floor at the other map's frontier counts (config keys
+  /// floor_crossing_clearance_cells, floor_crossing_floor_max_occupancy,
+  /// floor_crossing_known_around).
+  FloorCrossingSettings floor_crossing;
   /// The transform a step's checks accepted is refused when V peaks higher in another basin a few
   /// cells and degrees away (neighbour_basins.hpp) by more than this: the searches left it in the
   /// basin of a placement a little off (docs/merge_tuning.md, forty-eighth session). 1 or more:
@@ -284,10 +282,11 @@ void refuseWhereWallsCrossFloor(const GridMap& from, const GridMap& to,
                                 MergeResult& result);
 
 /// Refuses an accepted `result` whose V peaks higher in another basin nearby by more than
-/// settings.neighbour_basin_min_v_gain (neighbour_basins.hpp); the reason gives both peaks.
+/// settings.neighbour_basin_min_v_gain (neighbour_basins.hpp), on `judge`'s block 8 inputs of
+/// the pair; the reason gives both peaks.
 void refuseWhereANeighbourPeaksHigher(const GridMap& from, const GridMap& to,
-                                      const ChainSettings& settings,
-                                      const SimilaritySettings& classes, MergeResult& result);
+                                      const ChainSettings& settings, SeedMerger& judge,
+                                      MergeResult& result);
 
 /// Refines an accepted result by ψ (see ChainSettings), cells classed by `classes` as the judge
 /// classes them; `method` gains "+psi" when it is kept.

@@ -117,6 +117,7 @@
 #include "mrslam/fusion/merge/global_search.hpp"
 #include "mrslam/fusion/merge/histograms.hpp"
 #include "mrslam/fusion/merge/map_merger.hpp"
+#include "mrslam/fusion/merge/neighbour_basins.hpp"
 #include "mrslam/fusion/merge/radon.hpp"
 #include "mrslam/fusion/merge/segments.hpp"
 #include "mrslam/fusion/merge/similarity.hpp"
@@ -317,6 +318,12 @@ class SeedMerger : public MapMerger {
   /// block 8 inputs: their wall fields, samples and code image, built once for the pair (the
   /// same figures as alignAccepted(from, to, ...) with this merger's settings).
   void alignOnInputs(const GridMap& from, const GridMap& to, MergeResult& result);
+  /// neighbourBasins() of T_to_from on the pair's block 8 inputs (every known cell of `from`,
+  /// `to` as codes), built once for the pair; from the maps themselves where they cannot be
+  /// compared.
+  NeighbourBasins neighbourBasinsAt(const GridMap& from, const GridMap& to,
+                                    const GridTransform& T_to_from,
+                                    const NeighbourBasinSettings& settings);
 
  private:
   /// Adds `more` to the ordered `candidates`; `refined` follows a new best and the rival share.
