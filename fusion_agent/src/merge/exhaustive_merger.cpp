@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "mrslam/fusion/merge/overlap_score.hpp"
 #include "mrslam/fusion/merge/similarity.hpp"
@@ -30,12 +31,24 @@ SeedMergerSettings judgeSettings(const ExhaustiveMergerSettings& settings,
 }  // namespace
 
 ExhaustiveMerger::ExhaustiveMerger(ExhaustiveMergerSettings settings,
-                                   const SeedMergerSettings& judge)
-    : settings_(settings), judge_(judgeSettings(settings, judge)), classes_(judge.similarity) {}
+                                   const SeedMergerSettings& judge, std::string name)
+    : settings_(settings),
+      judge_(judgeSettings(settings, judge)),
+      classes_(judge.similarity),
+      name_(std::move(name)) {}
 
-ExhaustiveMergerSettings loadExhaustiveMergerSettings(const Config& config) {
+ExhaustiveMergerSettings strictExhaustiveMergerSettings() {
   ExhaustiveMergerSettings s;
-  s.search = loadExhaustiveSearchSettings(config);
+  s.search.conflict_penalty = 20.0;
+  s.search.free_penalty = 20.0;
+  s.search.free_margin = 2;
+  return s;
+}
+
+ExhaustiveMergerSettings loadExhaustiveMergerSettings(const Config& config,
+                                                      const ExhaustiveMergerSettings& defaults) {
+  ExhaustiveMergerSettings s = defaults;
+  s.search = loadExhaustiveSearchSettings(config, defaults.search);
   s.judged_hypotheses =
       static_cast<int>(config.getInt("judged_hypotheses", s.judged_hypotheses, {0, 1000}));
   s.check_both_ways = config.getBool("check_both_ways", s.check_both_ways);
@@ -53,8 +66,9 @@ ExhaustiveMergerSettings loadExhaustiveMergerSettings(const Config& config) {
   return s;
 }
 
-ExhaustiveSearchSettings loadExhaustiveSearchSettings(const Config& config) {
-  ExhaustiveSearchSettings s;
+ExhaustiveSearchSettings loadExhaustiveSearchSettings(const Config& config,
+                                                      const ExhaustiveSearchSettings& defaults) {
+  ExhaustiveSearchSettings s = defaults;
   s.cell_size = static_cast<int>(config.getInt("cell_size", s.cell_size, {1, 16}));
   s.max_grid_cells =
       static_cast<int>(config.getInt("max_grid_cells", s.max_grid_cells, {0, 100000}));

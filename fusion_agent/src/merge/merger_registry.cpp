@@ -15,7 +15,7 @@ namespace mrslam::fusion {
 
 std::vector<std::string> mergerNames() {
   // Best first, as measured by `mrslam merge-cases` (docs/merge_tuning.md).
-  return {"chain", "seed", "exhaustive", "psi_walk", "virtual", "feature"};
+  return {"chain", "seed", "exhaustive", "exhaustive_strict", "psi_walk", "virtual", "feature"};
 }
 
 std::string defaultMergerName() {
@@ -94,7 +94,8 @@ std::unique_ptr<MapMerger> makeChain(const Config& chain, const Config* methods,
 
 /// The mergers whose hypotheses the seed pipeline's acceptance judges (makeJudgedMerger).
 bool isJudgedMerger(const std::string& name) {
-  return name == "virtual" || name == "exhaustive" || name == "psi_walk";
+  return name == "virtual" || name == "exhaustive" || name == "exhaustive_strict" ||
+         name == "psi_walk";
 }
 
 /// The mergers whose hypotheses the seed pipeline's acceptance judges: their own settings and the
@@ -106,6 +107,10 @@ std::unique_ptr<MapMerger> makeJudgedMerger(const std::string& name, const Confi
   }
   if (name == "exhaustive") {
     return std::make_unique<ExhaustiveMerger>(loadExhaustiveMergerSettings(settings), judge);
+  }
+  if (name == "exhaustive_strict") {
+    return std::make_unique<ExhaustiveMerger>(
+        loadExhaustiveMergerSettings(settings, strictExhaustiveMergerSettings()), judge, name);
   }
   if (name == "psi_walk") {
     return std::make_unique<PsiWalkMerger>(loadPsiWalkSettings(settings), judge);

@@ -119,7 +119,7 @@ TEST(FusionConfigTest, TheMergeMethodMakesItsMergerWithItsSettings) {
   EXPECT_EQ(walk.make_merger()->name(), "psi_walk");
   EXPECT_THAT(loadError("merge:\n  method: carpin\n"),
               HasSubstr("fusion.yaml:2: merge.method: 'carpin' is not one of: chain, seed, "
-                        "exhaustive, psi_walk, virtual, feature, none"));
+                        "exhaustive, exhaustive_strict, psi_walk, virtual, feature, none"));
   EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    canny_low: -1\n"),
               HasSubstr("fusion.yaml:4: merge.seed.canny_low: -1 is out of range"));
   EXPECT_THAT(loadError("merge:\n  method: seed\n  seed:\n    bogus: 1\n"),

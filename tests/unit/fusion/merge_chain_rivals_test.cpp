@@ -250,8 +250,8 @@ TEST(MergeChainRivalsTest, TheSettingIsRead) {
 }
 
 // Case 60 of `--seed 5` (34 % overlap), another robot's map of the building of the wings above:
-// both chain steps place crop A 91 cells (4.5 m) along the building, at V 0.954, and neither
-// search proposes the truth (V 0.989 at its place, 0.011 of its known cells disagreeing).
+// the exhaustive and seed steps place crop A 91 cells (4.5 m) along the building, at V 0.954, and
+// neither search proposes the truth (V 0.989 at its place, 0.011 of its known cells disagreeing).
 const CropPair kRepeatingRooms{"carpin-robot0_cast.txt",
                                60,
                                {{55, -72}, 202, 2.5837842604140846, {28, 34}, {19, 6}},
@@ -265,12 +265,15 @@ const CropPair kAcesCorridors{"freiburg-aces.pgm",
                               {{690, 1}, 254, -1.5614571367744312, {12, 15}, {27, 1}}};
 
 std::unique_ptr<MapMerger> chainWithSweep(bool sweep_rivals) {
-  // The floor-crossing check off: it refuses the repeated room too.
-  return makeMergerFrom("chain", Config::loadString(std::string("chain: {sweep_rivals: ") +
-                                                        (sweep_rivals ? "true" : "false") +
-                                                        ", floor_crossing_min_cells: 0}\n"
-                                                        "exhaustive: {hypotheses: 16}\n",
-                                                    "m.yaml"));
+  // The floor-crossing check off: it refuses the repeated room too. The first two steps alone:
+  // the strict search, the default's second step, proposes the truth itself (the last test).
+  return makeMergerFrom(
+      "chain",
+      Config::loadString(std::string("chain: {sweep_rivals: ") + (sweep_rivals ? "true" : "false") +
+                             ", floor_crossing_min_cells: 0, " + merge_test::kFirstTwoSteps +
+                             "}\n"
+                             "exhaustive: {hypotheses: 16}\n",
+                         "m.yaml"));
 }
 
 TEST(MergeChainSweepRivalsTest, ARepeatedRoomIsRefusedForTheCleanerTruthAtItsRotation) {
@@ -289,7 +292,16 @@ TEST(MergeChainSweepRivalsTest, ARepeatedRoomIsRefusedForTheCleanerTruthAtItsRot
   EXPECT_FALSE(result.accepted) << caseError(merge_case, result.T_to_from).distance_cells
                                 << " cells from the truth";
   EXPECT_NE(result.reason.find("more cleanly"), std::string::npos) << result.reason;
-  EXPECT_FALSE(makeMerger(defaultMergerName())->merge(merge_case.a, merge_case.b).accepted);
+}
+
+// The strict search (conflicts cost 20) proposes the truth of the repeated room that neither
+// search of the first two steps proposes, and the default chain places it there.
+TEST(MergeChainSweepRivalsTest, TheStrictSearchPlacesTheRepeatedRoomRight) {
+  MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot0_cast.txt");
+  const MergeCase merge_case = cut(kRepeatingRooms);
+  const MergeResult placed = merge_test::expectMergedWithinTwoCellsAndOneDegree(
+      merge_case, *makeMerger(defaultMergerName()));
+  EXPECT_EQ(placed.method, "exhaustive_strict");
 }
 
 // The default prefilter keeps the cleaner truth among the peaks placed (the test above); a bar

@@ -32,14 +32,18 @@ const CropPair kPlacedByTheVirtualRobot[] = {
 
 TEST(MergeChainVirtualStepTest, TheDefaultStepsEndWithTheVirtualRobot) {
   EXPECT_EQ(parseChainSteps(kDefaultChainSteps),
-            (std::vector<std::string>{"exhaustive", "seed", "virtual"}));
+            (std::vector<std::string>{"exhaustive", "exhaustive_strict", "seed", "virtual"}));
 }
 
 TEST(MergeChainVirtualStepTest, TheVirtualRobotPlacesWhatBothSearchesRefuse) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot3_cast.txt");
   MRSLAM_REQUIRE_SHARED_DATA("maps/freiburg-aces.pgm");
-  const std::unique_ptr<MapMerger> chain = makeMerger(defaultMergerName());
+  // The strict search (the default's second step) places case 16 itself; the virtual robot is
+  // weighed here behind the other two steps alone.
+  const std::unique_ptr<MapMerger> chain =
+      merge_test::chainFrom("chain: {steps: \"exhaustive,seed,virtual\"}\n");
   const std::unique_ptr<MapMerger> two_steps = merge_test::chainOfTwoSteps();
+  const std::unique_ptr<MapMerger> by_default = makeMerger(defaultMergerName());
   for (const CropPair& pair : kPlacedByTheVirtualRobot) {
     const MergeCase merge_case = merge_test::cut(pair);
     const MergeResult refused = two_steps->merge(merge_case.a, merge_case.b);
@@ -48,6 +52,7 @@ TEST(MergeChainVirtualStepTest, TheVirtualRobotPlacesWhatBothSearchesRefuse) {
         merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);
     EXPECT_EQ(placed.method, "virtual") << "case " << pair.case_id;
     EXPECT_GE(placed.verification, 0.9) << "case " << pair.case_id;
+    merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *by_default);
   }
 }
 

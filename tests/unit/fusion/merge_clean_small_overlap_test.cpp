@@ -81,8 +81,10 @@ template <std::size_t N>
 void expectMergedOnlyByDefault(const CropPair (&truths)[N], const std::string& refusing_seed,
                                const std::string& search = "") {
   const std::unique_ptr<MapMerger> chain = merge_test::chainFrom(search);
-  const std::unique_ptr<MapMerger> refusing =
-      merge_test::chainFrom(search + "seed: {" + refusing_seed + "}\n");
+  // Without the strict search: it places case 102 of `--seed 23` on an overlap of more known cells
+  // whose walls meet at the higher bar too.
+  const std::unique_ptr<MapMerger> refusing = merge_test::chainFrom(
+      search + "seed: {" + refusing_seed + "}\nchain: {steps: \"exhaustive,seed,virtual\"}\n");
   for (const CropPair& pair : truths) {
     const MergeCase merge_case = merge_test::cut(pair);
     merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);

@@ -55,7 +55,8 @@ const CropPair kHalfTurnRankedLate{"freiburg-aces.pgm",
 void expectRefusedAtThreeAndMergedByDefault(const CropPair& pair) {
   const MergeCase merge_case = cut(pair);
   const MergeResult at_three =
-      chainFrom("exhaustive: {judged_hypotheses: 3}\n")->merge(merge_case.a, merge_case.b);
+      chainFrom("exhaustive: {judged_hypotheses: 3}\nexhaustive_strict: {judged_hypotheses: 3}\n")
+          ->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(at_three.accepted) << "case " << pair.case_id;
   const std::unique_ptr<MapMerger> chain = chainFrom("");
   merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);

@@ -38,8 +38,9 @@ void expectRefusedByTheCheckAndMergedByDefault(const CropPair& pair,
                                                const std::string& exhaustive_section,
                                                const std::string& reason) {
   const MergeCase merge_case = cut(pair);
-  const MergeResult checked =
-      chainFrom("exhaustive: {" + exhaustive_section + "}\n")->merge(merge_case.a, merge_case.b);
+  const MergeResult checked = chainFrom("exhaustive: {" + exhaustive_section +
+                                        "}\nexhaustive_strict: {" + exhaustive_section + "}\n")
+                                  ->merge(merge_case.a, merge_case.b);
   EXPECT_FALSE(checked.accepted) << "case " << pair.case_id;
   EXPECT_NE(checked.reason.find(reason), std::string::npos) << checked.reason;
   const std::unique_ptr<MapMerger> chain = chainFrom("");

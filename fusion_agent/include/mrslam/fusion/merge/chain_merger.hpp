@@ -297,8 +297,10 @@ void refineByPsi(const GridMap& from, const GridMap& to, const ChainSettings& se
 /// for a bad value. The steps (`steps`) are read by the merger registry.
 ChainSettings loadChainSettings(const Config& chain);
 
-/// The default steps of a chain.
-constexpr const char* kDefaultChainSteps = "exhaustive,seed,virtual";
+/// The default steps of a chain: the exhaustive search, the strict one where it refuses
+/// (strictExhaustiveMergerSettings(): clean fits ranked above placements that overlap more and
+/// conflict; docs/merge_tuning.md, forty-ninth session), the seed pipeline, the virtual robot.
+constexpr const char* kDefaultChainSteps = "exhaustive,exhaustive_strict,seed,virtual";
 
 /// The step names of a `steps` value ("exhaustive,seed"); throws std::invalid_argument for an empty
 /// list, "chain" itself or a repeated step.

@@ -50,19 +50,34 @@ struct ExhaustiveMergerSettings {
   int ambiguity_shift_cells = 3;    ///< its shifts, cells
 };
 
+/// The strict search's defaults (the `exhaustive_strict` method): a wall of either map on the
+/// other's open floor and a free cell on the other's wall cost 20 instead of 6, and free cells
+/// within 2 grid cells of `from`'s walls are not scored. It ranks placements whose known cells
+/// fit cleanly above ones that cover more cells with more conflicts: in ACES's lattice of
+/// corridors the default search's 16 hypotheses can all be placements a corridor along that
+/// overlap more (agr 7600, dis 370 against the truth's 5800 and 100), and the truth is not
+/// among them (docs/merge_tuning.md, forty-ninth session).
+ExhaustiveMergerSettings strictExhaustiveMergerSettings();
+
 /// Reads the search's keys of an `exhaustive:` section (keys as the fields of
-/// ExhaustiveSearchSettings); throws ConfigError for a bad value.
-ExhaustiveSearchSettings loadExhaustiveSearchSettings(const Config& config);
-/// Reads an `exhaustive:` section: the search's keys and the merger's own.
-ExhaustiveMergerSettings loadExhaustiveMergerSettings(const Config& config);
+/// ExhaustiveSearchSettings; a key left out keeps its value in `defaults`); throws ConfigError
+/// for a bad value.
+ExhaustiveSearchSettings loadExhaustiveSearchSettings(
+    const Config& config, const ExhaustiveSearchSettings& defaults = {});
+/// Reads an `exhaustive:` (or `exhaustive_strict:`) section: the search's keys and the merger's
+/// own, over `defaults`.
+ExhaustiveMergerSettings loadExhaustiveMergerSettings(
+    const Config& config, const ExhaustiveMergerSettings& defaults = {});
 
 class ExhaustiveMerger : public MapMerger {
  public:
-  /// `judge` judges the hypotheses, with judged_hypotheses as its judged_candidates (unless 0).
+  /// `judge` judges the hypotheses, with judged_hypotheses as its judged_candidates (unless 0);
+  /// `name` is the method its results give ("exhaustive", or "exhaustive_strict" with
+  /// strictExhaustiveMergerSettings()).
   explicit ExhaustiveMerger(ExhaustiveMergerSettings settings = {},
-                            const SeedMergerSettings& judge = {});
+                            const SeedMergerSettings& judge = {}, std::string name = "exhaustive");
   MergeResult merge(const GridMap& from, const GridMap& to) override;
-  std::string name() const override { return "exhaustive"; }
+  std::string name() const override { return name_; }
   void shareSearchInputs(const std::shared_ptr<SearchInputsCache>& cache) override {
     judge_.shareSearchInputs(cache);
   }
@@ -105,6 +120,7 @@ class ExhaustiveMerger : public MapMerger {
   ExhaustiveMergerSettings settings_;
   SeedMerger judge_;
   SimilaritySettings classes_;
+  std::string name_;
   BlockTimes times_;  // of the last merge
 };
 
