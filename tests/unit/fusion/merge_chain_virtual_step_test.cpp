@@ -41,7 +41,7 @@ TEST(MergeChainVirtualStepTest, TheVirtualRobotPlacesWhatBothSearchesRefuse) {
   // The strict search (the default's second step) places case 16 itself; the virtual robot is
   // weighed here behind the other two steps alone.
   const std::unique_ptr<MapMerger> chain =
-      merge_test::chainFrom("chain: {steps: \"exhaustive,seed,virtual\"}\n");
+      merge_test::chainFrom("chain: {" + merge_test::kWithoutTheStrictSearch + "}\n");
   const std::unique_ptr<MapMerger> two_steps = merge_test::chainOfTwoSteps();
   const std::unique_ptr<MapMerger> by_default = makeMerger(defaultMergerName());
   for (const CropPair& pair : kPlacedByTheVirtualRobot) {

@@ -83,8 +83,9 @@ void expectMergedOnlyByDefault(const CropPair (&truths)[N], const std::string& r
   const std::unique_ptr<MapMerger> chain = merge_test::chainFrom(search);
   // Without the strict search: it places case 102 of `--seed 23` on an overlap of more known cells
   // whose walls meet at the higher bar too.
-  const std::unique_ptr<MapMerger> refusing = merge_test::chainFrom(
-      search + "seed: {" + refusing_seed + "}\nchain: {steps: \"exhaustive,seed,virtual\"}\n");
+  const std::unique_ptr<MapMerger> refusing =
+      merge_test::chainFrom(search + "seed: {" + refusing_seed + "}\nchain: {" +
+                            merge_test::kWithoutTheStrictSearch + "}\n");
   for (const CropPair& pair : truths) {
     const MergeCase merge_case = merge_test::cut(pair);
     merge_test::expectMergedWithinTwoCellsAndOneDegree(merge_case, *chain);

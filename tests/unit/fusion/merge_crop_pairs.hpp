@@ -96,6 +96,10 @@ inline std::unique_ptr<MapMerger> chainFrom(const std::string& yaml) {
 /// virtual robot became the default's third step, which may place a case both refuse.
 inline const std::string kFirstTwoSteps = "steps: \"exhaustive,seed\"";
 
+/// The default steps without the strict search (a `chain:` section's `steps`): cases that step
+/// places itself are decided by the others as before it became the default's second step.
+inline const std::string kWithoutTheStrictSearch = "steps: \"exhaustive,seed,virtual\"";
+
 /// The chain of the first two default steps with `chain_body` ("key: value, ...") as the rest of
 /// its `chain:` section and `rest` (a merge config's other sections) over the defaults.
 inline std::unique_ptr<MapMerger> chainOfTwoSteps(const std::string& chain_body = "",
