@@ -14,7 +14,7 @@ jobs="${MRSLAM_JOBS:-2}"
 packages=(
   cmake make g++ git
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
-  libeigen3-dev libnanoflann-dev
+  libeigen3-dev libnanoflann-dev libceres-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libopencv-features2d-dev libopencv-calib3d-dev
   liboctomap-dev libyaml-cpp-dev libspdlog-dev libcli11-dev nlohmann-json3-dev zlib1g-dev

@@ -50,7 +50,10 @@ bool includesFlaserOdom(CarmenOdometry odometry) {
 CarmenReader::CarmenReader(CarmenSettings settings)
     : settings_(checked(settings)),
       lines_(settings_.path),
-      malformed_("carmen log", settings_.malformed_policy) {}
+      malformed_("carmen log", settings_.malformed_policy) {
+  while (!flaser_seen_ && readLine()) {
+  }
+}
 
 std::string CarmenReader::describe() const {
   return "carmen log " + settings_.path;
@@ -70,16 +73,33 @@ double CarmenReader::beamIncrementRad(std::size_t beam_count) {
   return M_PI / static_cast<double>(intervals);
 }
 
+std::optional<SE2> CarmenReader::laserMounting() const {
+  if (flaser_mounting_) {
+    return flaser_mounting_;
+  }
+  if (param_laser_offset_m_) {
+    return SE2(*param_laser_offset_m_, 0.0, 0.0);
+  }
+  return std::nullopt;
+}
+
+bool CarmenReader::readLine() {
+  if (!lines_.next(line_)) {
+    return false;
+  }
+  splitFields(line_, fields_);
+  if (const std::optional<LineProblem> problem = parseLine()) {
+    pending_.clear();
+    flaser_pose_.reset();
+    malformed_.handle(settings_.path, lines_.lineNumber(), *problem);
+  }
+  return true;
+}
+
 std::optional<Sample> CarmenReader::next() {
   while (pending_.empty()) {
-    if (!lines_.next(line_)) {
+    if (!readLine()) {
       return std::nullopt;
-    }
-    splitFields(line_, fields_);
-    if (const std::optional<LineProblem> problem = parseLine()) {
-      pending_.clear();
-      flaser_pose_.reset();
-      malformed_.handle(settings_.path, lines_.lineNumber(), *problem);
     }
   }
   Sample sample = std::move(pending_.front());
@@ -104,7 +124,10 @@ std::optional<LineProblem> CarmenReader::parseLine() {
   if (name == "ODOM") {
     return parseOdom();
   }
-  if (name == "PARAM" || name == "NEFF") {
+  if (name == "PARAM") {
+    return parseParam();
+  }
+  if (name == "NEFF") {
     return std::nullopt;
   }
   if (isMessageName(name)) {
@@ -182,12 +205,42 @@ std::optional<LineProblem> CarmenReader::parseFlaser() {
     }
   }
   const double* pose = values_.data() + count;
-  scan.logged_pose = SE2(pose[0], pose[1], pose[2]);
+  const SE2 T_world_laser(pose[0], pose[1], pose[2]);
+  const SE2 T_world_robot(pose[3], pose[4], pose[5]);
+  scan.logged_pose = T_world_laser;
   if (includesFlaserOdom(settings_.odometry)) {
-    pending_.emplace_back(OdometryPose{*stamp, SE2(pose[3], pose[4], pose[5])});
+    pending_.emplace_back(OdometryPose{*stamp, T_world_robot});
   }
   pending_.emplace_back(std::move(scan));
   flaser_pose_ = std::array<double, 3>{pose[0], pose[1], pose[2]};
+  flaser_stamp_ = *stamp;
+  noteMounting(T_world_laser, T_world_robot);
+  return std::nullopt;
+}
+
+void CarmenReader::noteMounting(const SE2& T_world_laser, const SE2& T_world_robot) {
+  const SE2 T_robot_laser = T_world_robot.inverse() * T_world_laser;
+  flaser_seen_ = true;
+  if (!flaser_mounting_) {
+    flaser_mounting_ = T_robot_laser;
+    return;
+  }
+  const SE2 difference = flaser_mounting_->inverse() * T_robot_laser;
+  if (difference.translation().norm() > kMountingToleranceM ||
+      std::abs(difference.theta()) > kMountingToleranceRad) {
+    ++mounting_mismatches_;
+  }
+}
+
+std::optional<LineProblem> CarmenReader::parseParam() {
+  if (fields_.size() < 3 || fields_[1] != "robot_frontlaser_offset") {
+    return std::nullopt;
+  }
+  double offset_m = 0.0;
+  if (auto problem = numbers(2, 1, &offset_m)) {
+    return problem;
+  }
+  param_laser_offset_m_ = offset_m;
   return std::nullopt;
 }
 
@@ -211,7 +264,8 @@ std::optional<LineProblem> CarmenReader::parseOdom() {
     return problem;
   }
   const bool reanchor = flaser_pose && (*flaser_pose)[0] == values[0] &&
-                        (*flaser_pose)[1] == values[1] && (*flaser_pose)[2] == values[2];
+                        (*flaser_pose)[1] == values[1] && (*flaser_pose)[2] == values[2] &&
+                        secondsBetween(*stamp, flaser_stamp_) > kReanchorLagS;
   if (reanchor) {
     ++reanchor_odom_records_;
   }

@@ -65,6 +65,17 @@ void logEkfSummary(const std::string& robot_id, const mrslam::robot::EkfEstimato
       c.heading_recoveries, c.late_imu, c.imu_gaps, ekf.gyroBias());
 }
 
+void logSlamSummary(const std::string& robot_id, const mrslam::robot::slam::SlamEstimator& slam) {
+  const auto& c = slam.counters();
+  spdlog::info(
+      "{}: SLAM: {} scans, {} submap matches ({} gated out, {} failed, {} with a correlative "
+      "search); {} nodes, {} submaps; loop closure: {} searches, {} found, {} refused by their "
+      "residual; {} pose-graph solves",
+      robot_id, c.scans, c.matches, c.match_rejections, c.match_failures, c.correlative_searches,
+      c.nodes, c.submaps, slam.loopCloser().counters().searches, c.closures,
+      slam.poseGraph().counters().closures_refused, slam.poseGraph().counters().solves);
+}
+
 void writeOutputs(const Options& options, const mrslam::robot::RobotPipeline& pipeline,
                   const RobotConfig& config) {
   if (!options.out.empty()) {
@@ -93,6 +104,7 @@ int runRobot(const Options& options, const RobotConfig& config) {
   }
   auto estimator = mrslam::robot::makeEstimator(config, config.estimator.type);
   const auto* ekf = dynamic_cast<const mrslam::robot::EkfEstimator*>(estimator.get());
+  const auto* slam = dynamic_cast<const mrslam::robot::slam::SlamEstimator*>(estimator.get());
   auto pipeline = std::make_unique<mrslam::robot::RobotPipeline>(config.mapping, config.mounting,
                                                                  std::move(estimator));
   NoOutput no_output;
@@ -117,6 +129,9 @@ int runRobot(const Options& options, const RobotConfig& config) {
       counters.malformed_records, summary.replay_gaps_shortened);
   if (ekf != nullptr) {
     logEkfSummary(config.robot_id, *ekf);
+  }
+  if (slam != nullptr) {
+    logSlamSummary(config.robot_id, *slam);
   }
   writeOutputs(options, *pipeline, config);
   if (node && config.delivery_readers > 0) {
@@ -220,6 +235,10 @@ RobotConfig loadConfig(Options& options) {
   if (options.seed >= 0) {
     config.source.odometry_noise.seed = static_cast<std::uint64_t>(options.seed);
   }
+  if (const auto mounting = mrslam::robot::applyLogLaserMounting(config)) {
+    spdlog::info("robot_agent: the log mounts the laser at x {:.3f} m, y {:.3f} m, {:.2f} deg",
+                 mounting->x(), mounting->y(), mounting->theta() * 180.0 / M_PI);
+  }
   return config;
 }
 
@@ -235,8 +254,8 @@ int main(int argc, char** argv) {
                  "--config-dir, by the log's format)");
   app.add_option("--config-dir", options.config_dir,
                  "folder of the default robot configs (default: config)");
-  app.add_option("--estimator", options.estimator, "odometry or ekf (overrides the config)")
-      ->check(CLI::IsMember({"odometry", "ekf"}));
+  app.add_option("--estimator", options.estimator, "odometry, ekf or slam (overrides the config)")
+      ->check(CLI::IsMember({"odometry", "ekf", "slam"}));
   app.add_option("--odom-noise", options.odom_noise,
                  "DIST_FRACTION,DEG_PER_M: seeded noise added to the log's odometry poses "
                  "(e.g. 0.1,2; overrides the config)");

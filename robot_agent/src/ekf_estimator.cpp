@@ -155,6 +155,18 @@ void EkfEstimator::updateWithScanMatch(const ScanMatch& match) {
   timings_.filter_s += secondsSince(start);
 }
 
+Correction EkfEstimator::updateWithScanPose(const SE2& T_map_robot,
+                                            const Eigen::Matrix3d& covariance) {
+  const StateVector& x = filter_.state();
+  const SE2 T_map_anchor(x(state::kAnchorX), x(state::kAnchorY), x(state::kAnchorTheta));
+  ScanMatch match;
+  match.T_anchor_robot = T_map_anchor.inverse() * T_map_robot;
+  match.covariance = covariance;
+  match.icp.converged = true;
+  updateWithScanMatch(match);
+  return last_correction_ ? *last_correction_ : Correction{};
+}
+
 void EkfEstimator::addImu(const ImuSample& imu) {
   if (isLate(imu.stamp)) {
     ++counters_.late_imu;

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "mrslam/robot/slam/slam_config.hpp"
+
 namespace mrslam::robot {
 
 namespace {
@@ -94,7 +96,15 @@ ScanMatcherSettings loadScanMatching(const Config& section) {
 }  // namespace
 
 const char* estimatorTypeName(EstimatorType type) {
-  return type == EstimatorType::kOdometry ? "odometry" : "ekf";
+  switch (type) {
+    case EstimatorType::kOdometry:
+      return "odometry";
+    case EstimatorType::kEkf:
+      return "ekf";
+    case EstimatorType::kSlam:
+      return "slam";
+  }
+  return "ekf";
 }
 
 EstimatorType parseEstimatorType(const std::string& name) {
@@ -104,12 +114,15 @@ EstimatorType parseEstimatorType(const std::string& name) {
   if (name == "ekf") {
     return EstimatorType::kEkf;
   }
-  throw std::invalid_argument("estimator '" + name + "' is not odometry or ekf");
+  if (name == "slam") {
+    return EstimatorType::kSlam;
+  }
+  throw std::invalid_argument("estimator '" + name + "' is not odometry, ekf or slam");
 }
 
 EstimatorSettings loadEstimatorSettings(const Config& section) {
   EstimatorSettings settings;
-  settings.type = parseEstimatorType(section.getChoice("type", "ekf", {"odometry", "ekf"}));
+  settings.type = parseEstimatorType(section.getChoice("type", "ekf", {"odometry", "ekf", "slam"}));
   EkfSettings& ekf = settings.ekf;
   ekf.gate_probability =
       section.getDouble("gate_probability", ekf.gate_probability, {0.5, 1.0 - 1e-12});
@@ -126,6 +139,7 @@ EstimatorSettings loadEstimatorSettings(const Config& section) {
   ekf.scan_duration_s = section.getDouble("scan_duration_s", ekf.scan_duration_s, {0.0, 10.0});
   ekf.imu = loadImu(section.section("imu"));
   ekf.scan_matching = loadScanMatching(section.section("scan_matching"));
+  settings.slam = slam::loadSlamSettings(section.section("slam"));
   return settings;
 }
 

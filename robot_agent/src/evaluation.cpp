@@ -26,6 +26,7 @@ PipelineRun runPipeline(const RobotConfig& config, EstimatorType type,
       run.covariances.push_back(run.pipeline->covariance());
     }
   }
+  run.pipeline->finish();
   run.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (ekf != nullptr) {
     run.ekf_counters = ekf->counters();

@@ -142,6 +142,7 @@ RobotConfig loadRobotConfig(const std::string& path) {
   robot.sightings = drivers::loadSightingSettings(config.section("simulator").section("sightings"));
   robot.platform = loadPlatform(config.section("platform"));
   robot.mounting = loadMounting(config.section("laser"), config.section("imu"));
+  robot.laser_mounting_unset = !config.has("laser");
   robot.odometry_noise = loadOdometryNoise(config.section("odometry_noise"));
   robot.estimator = loadEstimatorSettings(config.section("estimator"));
   robot.estimator.ekf.odometry = robot.odometry_noise;
@@ -153,6 +154,13 @@ RobotConfig loadRobotConfig(const std::string& path) {
 }
 
 namespace {
+
+drivers::CarmenSettings carmenSettings(const SourceSettings& source) {
+  drivers::CarmenSettings settings;
+  settings.path = source.path;
+  settings.malformed_policy = source.malformed;
+  return settings;
+}
 
 std::unique_ptr<drivers::SampleSource> openUnwrappedSource(const RobotConfig& config) {
   const SourceSettings& source = config.source;
@@ -179,12 +187,8 @@ std::unique_ptr<drivers::SampleSource> openUnwrappedSource(const RobotConfig& co
       settings.malformed_policy = source.malformed;
       return std::make_unique<drivers::BreezySlamReader>(settings);
     }
-    case SourceType::kCarmen: {
-      drivers::CarmenSettings settings;
-      settings.path = source.path;
-      settings.malformed_policy = source.malformed;
-      return std::make_unique<drivers::CarmenReader>(settings);
-    }
+    case SourceType::kCarmen:
+      return std::make_unique<drivers::CarmenReader>(carmenSettings(source));
   }
   throw std::logic_error("unknown source type");
 }
@@ -200,12 +204,31 @@ std::unique_ptr<drivers::SampleSource> openSource(const RobotConfig& config) {
   return source;
 }
 
+std::optional<SE2> applyLogLaserMounting(RobotConfig& config) {
+  if (!config.laser_mounting_unset || config.source.type != SourceType::kCarmen ||
+      config.source.path.empty()) {
+    return std::nullopt;
+  }
+  const std::optional<SE2> mounting =
+      drivers::CarmenReader(carmenSettings(config.source)).laserMounting();
+  if (mounting) {
+    config.mounting.T_robot_laser = *mounting;
+  }
+  return mounting;
+}
+
 std::unique_ptr<PoseEstimator> makeEstimator(const RobotConfig& config, EstimatorType type) {
   if (type == EstimatorType::kOdometry) {
     return std::make_unique<OdometryEstimator>(config.platform, config.odometry_noise);
   }
   EkfSettings ekf = config.estimator.ekf;
   ekf.odometry = config.odometry_noise;
+  if (type == EstimatorType::kSlam) {
+    slam::SlamSettings settings = config.estimator.slam;
+    settings.ekf = ekf;
+    settings.ekf.odometry = settings.odometry;
+    return std::make_unique<slam::SlamEstimator>(config.platform, config.mounting, settings);
+  }
   return std::make_unique<EkfEstimator>(config.platform, config.mounting, ekf);
 }
 

@@ -35,10 +35,27 @@ RobotPipeline::Update RobotPipeline::process(const Sample& sample) {
   return Update::kPose;
 }
 
+const OccupancyGrid& RobotPipeline::grid() const {
+  const OccupancyGrid* own = estimator_->drawsItsOwnMap() ? estimator_->map() : nullptr;
+  return own != nullptr ? *own : mapper_.grid();
+}
+
+const std::vector<TrajectoryPoint>& RobotPipeline::trajectory() const {
+  const std::vector<SE2> revised = estimator_->revisedScanPoses();
+  if (revised.size() == trajectory_.size()) {
+    for (std::size_t i = 0; i < revised.size(); ++i) {
+      trajectory_[i].T_map_robot = revised[i];
+    }
+  }
+  return trajectory_;
+}
+
 RobotPipeline::Update RobotPipeline::processScan(const LaserScan& scan) {
   ++counters_.scans;
   estimator_->addScan(scan, mapper_.grid());
-  mapper_.insertScan(scan, estimator_->pose());
+  if (!estimator_->drawsItsOwnMap()) {
+    mapper_.insertScan(scan, estimator_->pose());
+  }
   trajectory_.push_back({scan.stamp, estimator_->pose()});
   return Update::kScan;
 }

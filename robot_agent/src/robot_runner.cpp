@@ -65,6 +65,7 @@ RunSummary RobotRunner::run(const std::atomic<bool>& stop) {
     progress_->finish();
   }
   summary.stopped_early = stop.load();
+  pipeline_.finish();
   publishMap(true);
   publishStatus(RobotState::kFinished, summary.stopped_early ? "stopped" : "end of data");
   summary.maps_published = maps_published_;

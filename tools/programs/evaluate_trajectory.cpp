@@ -3,21 +3,28 @@
 // the simulator's true poses): relative pose error of consecutive scans and of scans 10 apart,
 // ATE after SE(2) alignment, the EKF's mean NEES, and how well every 10th scan re-registers
 // against the finished map (map sharpness, for logs without ground truth such as BreezySLAM's).
+// With --relations (one file per log: the raw Freiburg logs' benchmark relations) it prints the
+// metric of Kümmerle et al. instead: the mean and σ of the relation errors of every run.
 //
 //   mrslam_evaluate_trajectory [LOG...] [--odom-noise F,D]... [--seed N] [--robot-config FILE]
-//       [--config-dir DIR] [--runs odometry,ekf,ekf-scan] [--trajectory-dir DIR] [--map-dir DIR]
+//       [--config-dir DIR] [--runs odometry,ekf,ekf-scan,slam] [--trajectory-dir DIR]
+//       [--map-dir DIR] [--relations FILE]... [--json]
 
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "mrslam/common/map_io.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/drivers/log_format.hpp"
 #include "mrslam/robot/evaluation.hpp"
 #include "mrslam/robot/map_quality.hpp"
+#include "mrslam/robot/relations.hpp"
 #include "mrslam/robot/trajectory_io.hpp"
 
 namespace {
@@ -36,17 +43,22 @@ struct Options {
   std::string trajectory_dir;
   std::string map_dir;
   std::size_t rereg_stride = 10;
+  std::vector<std::string> relations;  ///< one per log: the relation metric instead of the table
+  bool json = false;                   ///< the relation metric as one JSON document
 };
 
-// A run label: "odometry", "ekf" (the config's scan matching), "ekf-map" or "ekf-scan".
+// A run label: "odometry", "ekf" (the config's scan matching), "ekf-map", "ekf-scan" or "slam".
 RobotConfig configForRun(RobotConfig config, const std::string& run, EstimatorType& type) {
-  type = run == "odometry" ? EstimatorType::kOdometry : EstimatorType::kEkf;
+  type = run == "odometry" ? EstimatorType::kOdometry
+         : run == "slam"   ? EstimatorType::kSlam
+                           : EstimatorType::kEkf;
   if (run == "ekf-map") {
     config.estimator.ekf.scan_matching.mode = MatchMode::kScanToMap;
   } else if (run == "ekf-scan") {
     config.estimator.ekf.scan_matching.mode = MatchMode::kScanToScan;
-  } else if (run != "ekf" && run != "odometry") {
-    throw std::invalid_argument("unknown run '" + run + "' (odometry, ekf, ekf-map, ekf-scan)");
+  } else if (run != "ekf" && run != "odometry" && run != "slam") {
+    throw std::invalid_argument("unknown run '" + run +
+                                "' (odometry, ekf, ekf-map, ekf-scan, slam)");
   }
   return config;
 }
@@ -72,6 +84,7 @@ RobotConfig configForLog(const Options& options, const std::string& log, const s
   config.source.path = log;
   config.source.odometry_noise = drivers::parseOdometryNoise(noise);
   config.source.odometry_noise.seed = options.seed;
+  applyLogLaserMounting(config);
   return config;
 }
 
@@ -172,6 +185,106 @@ void evaluateLog(const Options& options, const std::string& log, const std::stri
   }
 }
 
+// The laser's pose at every scan of a run: the frame the benchmark's relations are of.
+std::vector<StampedPose> laserTrajectory(const PipelineRun& run, const SE2& T_robot_laser) {
+  std::vector<StampedPose> poses;
+  for (const TrajectoryPoint& point : run.pipeline->trajectory()) {
+    poses.push_back({point.stamp, point.T_map_robot * T_robot_laser});
+  }
+  return poses;
+}
+
+double logDurationS(const std::vector<LaserScan>& scans) {
+  if (scans.empty()) {
+    return 0.0;
+  }
+  auto [first, last] =
+      std::minmax_element(scans.begin(), scans.end(),
+                          [](const LaserScan& a, const LaserScan& b) { return a.stamp < b.stamp; });
+  return secondsBetween(first->stamp, last->stamp);
+}
+
+nlohmann::json statsJson(const RelationErrorStats& stats) {
+  return {{"count", stats.count},
+          {"translation_mean_m", stats.translation_mean_m},
+          {"translation_sigma_m", stats.translation_sigma_m},
+          {"rotation_mean_deg", stats.rotation_mean_deg},
+          {"rotation_sigma_deg", stats.rotation_sigma_deg}};
+}
+
+void printRelationHeader() {
+  std::printf(
+      "| log | run | relations | t mean ± σ [m] | r mean ± σ [deg] | < %.0f s: t [m], r [deg] | "
+      "≥ %.0f s: t [m], r [deg] | unmatched | time [s] | × real time |\n|---|---|---|---|---|---|"
+      "---|---|---|---|\n",
+      kNearSeconds, kNearSeconds);
+}
+
+void printRelationRow(const std::string& log, const std::string& run_name,
+                      const RelationReport& report, double wall_time_s, double duration_s) {
+  const auto& a = report.all;
+  std::printf(
+      "| %s | %s | %zu | %.4f ± %.4f | %.3f ± %.3f | %.4f, %.3f | %.4f, %.3f | %zu | %.1f | %.1f "
+      "|\n",
+      fs::path(log).filename().string().c_str(), run_name.c_str(), a.count, a.translation_mean_m,
+      a.translation_sigma_m, a.rotation_mean_deg, a.rotation_sigma_deg,
+      report.near.translation_mean_m, report.near.rotation_mean_deg, report.far.translation_mean_m,
+      report.far.rotation_mean_deg, report.unmatched, wall_time_s,
+      wall_time_s > 0.0 ? duration_s / wall_time_s : 0.0);
+  std::fflush(stdout);
+}
+
+// The relation metric of every run on one log; a JSON entry per run when `json` is given.
+void evaluateLogRelations(const Options& options, const std::string& log,
+                          const std::string& relations_path, nlohmann::json* json) {
+  const std::vector<Relation> relations = readRelations(relations_path);
+  const RobotConfig base = configForLog(options, log, options.noises.front());
+  const auto source = openSource(base);
+  const std::vector<Sample> samples = readAllSamples(*source);
+  const double duration_s = logDurationS(scansOf(samples));
+  for (const std::string& run_name : options.runs) {
+    EstimatorType type;
+    const RobotConfig config = configForRun(base, run_name, type);
+    spdlog::info("{}: {} run", log, run_name);
+    const PipelineRun run = runPipeline(config, type, samples);
+    const RelationReport report =
+        evaluateRelations(laserTrajectory(run, config.mounting.T_robot_laser), relations);
+    if (json) {
+      json->push_back({{"log", fs::path(log).filename().string()},
+                       {"run", run_name},
+                       {"all", statsJson(report.all)},
+                       {"near", statsJson(report.near)},
+                       {"far", statsJson(report.far)},
+                       {"unmatched", report.unmatched},
+                       {"wall_time_s", run.wall_time_s},
+                       {"log_duration_s", duration_s}});
+    } else {
+      printRelationRow(log, run_name, report, run.wall_time_s, duration_s);
+    }
+    const std::string stem = fs::path(log).stem().stem().string() + "_" + run_name;
+    writeFiles(options, stem, run);
+  }
+}
+
+void evaluateAllRelations(const Options& options) {
+  if (options.relations.size() != options.logs.size()) {
+    throw std::invalid_argument("give one --relations file per log (" +
+                                std::to_string(options.logs.size()) + " logs, " +
+                                std::to_string(options.relations.size()) + " files)");
+  }
+  nlohmann::json json = nlohmann::json::array();
+  if (!options.json) {
+    printRelationHeader();
+  }
+  for (std::size_t i = 0; i < options.logs.size(); ++i) {
+    evaluateLogRelations(options, options.logs[i], options.relations[i],
+                         options.json ? &json : nullptr);
+  }
+  if (options.json) {
+    std::cout << json.dump(2) << "\n";
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -187,17 +300,28 @@ int main(int argc, char** argv) {
   app.add_option("--robot-config", options.robot_config,
                  "robot config (default: carmen.yaml or breezyslam.yaml by the log's format)");
   app.add_option("--config-dir", options.config_dir, "folder of the default robot configs");
-  app.add_option("--runs", options.runs, "odometry, ekf (config), ekf-map, ekf-scan")
+  app.add_option("--runs", options.runs, "odometry, ekf (config), ekf-map, ekf-scan, slam")
       ->delimiter(',');
   app.add_option("--trajectory-dir", options.trajectory_dir, "write each run's TUM trajectory");
   app.add_option("--map-dir", options.map_dir, "write each run's map as PNG");
   app.add_option("--rereg-stride", options.rereg_stride,
                  "every this many scans is re-registered against the finished map (rereg rms)");
+  app.add_option("--relations", options.relations,
+                 "the benchmark's relations of each log (t1 t2 x y z roll pitch yaw): print their "
+                 "metric (Kümmerle et al.) instead of the ground-truth table");
+  app.add_flag("--json", options.json, "with --relations: one JSON document on standard output");
   app.set_version_flag("--version", mrslam::versionLine("evaluate_trajectory"));
   CLI11_PARSE(app, argc, argv);
   try {
     if (options.logs.empty() && options.robot_config.empty()) {
       throw std::invalid_argument("give logs, or a --robot-config with its own source");
+    }
+    if (!options.relations.empty()) {
+      evaluateAllRelations(options);
+      return 0;
+    }
+    if (options.json) {
+      throw std::invalid_argument("--json needs --relations");
     }
     if (options.logs.empty()) {
       options.logs.push_back("");

@@ -11,8 +11,17 @@
 //
 // The corrected logs (Radish intel, aces, csail) follow every FLASER with an ODOM line that
 // repeats its pose: odometry re-anchored to the corrected pose, stamped 0 (intel: 69 of them
-// with garbage such as 1.65576e-153). These are counted in reanchor_odom_records() and, by
-// default, not emitted. In those logs the FLASER odom fields equal the laser pose.
+// with garbage such as 1.65576e-153) or long before the scan. An ODOM line right after a FLASER,
+// with its pose and stamped more than kReanchorLagS before it, is such a line: counted in
+// reanchor_odom_records() and, by default, not emitted. (A raw log's ODOM line may repeat the
+// scan's pose too, when the robot stood still: the raw intel log has 578, up to 0.9 s early,
+// as its lines were logged out of order.) In the corrected logs the FLASER odom fields equal
+// the laser pose.
+//
+// The laser's mounting on the robot, T_robot_laser, comes from the log: the first FLASER line's
+// laser pose in the frame of its odometry pose (fr079: x = -0.04 m, on every line), else
+// `PARAM robot_frontlaser_offset` (an x offset). The constructor reads the log up to its first
+// FLASER line, so laserMounting() is known as soon as the reader is open.
 
 #include <array>
 #include <cstddef>
@@ -24,6 +33,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mrslam/common/se2.hpp"
 #include "mrslam/drivers/line_reader.hpp"
 #include "mrslam/drivers/log_format.hpp"
 #include "mrslam/drivers/sample_source.hpp"
@@ -50,7 +60,16 @@ struct CarmenSettings {
 
 class CarmenReader final : public SampleSource {
  public:
-  /// Checks the settings (std::invalid_argument) and opens the log (std::runtime_error).
+  /// An ODOM line that repeats the FLASER pose before it and is stamped more than this many
+  /// seconds before that scan re-anchors the odometry (see above).
+  static constexpr double kReanchorLagS = 5.0;
+  /// A FLASER line whose pose pair differs from the first line's mounting by more than these
+  /// counts in laser_mounting_mismatches().
+  static constexpr double kMountingToleranceM = 1e-3;
+  static constexpr double kMountingToleranceRad = 1e-3;
+
+  /// Checks the settings (std::invalid_argument), opens the log (std::runtime_error) and reads
+  /// it up to its first FLASER line (a malformed line there under kStop: LogFormatError).
   explicit CarmenReader(CarmenSettings settings);
 
   std::optional<Sample> next() override;
@@ -67,15 +86,27 @@ class CarmenReader final : public SampleSource {
   /// "negative", "bad stamp", "not a message").
   std::map<std::string, std::uint64_t> malformedByKind() const { return malformed_.countsByKind(); }
 
+  /// T_robot_laser as the log records it: the first FLASER line's laser pose in the frame of its
+  /// odometry pose, else `PARAM robot_frontlaser_offset` as (offset, 0, 0); nothing when the
+  /// log has neither. Known from construction on.
+  std::optional<SE2> laserMounting() const;
+  /// FLASER lines read so far whose laser pose, seen from their odometry pose, is not the first
+  /// line's mounting (kMountingTolerance*): a log whose pose pair is no fixed mounting.
+  std::uint64_t laser_mounting_mismatches() const { return mounting_mismatches_; }
+
   /// Angle between beams of an n-beam FLASER over 180°: an odd count includes both ends
   /// (181, 361: pi/(n-1)); an even count lacks the last beam (180, 360: pi/n), as CARMEN has it.
   /// The 180-beam intel and aces logs fit best so (consecutive scans at their corrected poses).
   static double beamIncrementRad(std::size_t beam_count);
 
  private:
+  /// Reads and parses one line into pending_; false at the end of the log.
+  bool readLine();
   std::optional<LineProblem> parseLine();
   std::optional<LineProblem> parseFlaser();
   std::optional<LineProblem> parseOdom();
+  std::optional<LineProblem> parseParam();
+  void noteMounting(const SE2& T_world_laser, const SE2& T_world_robot);
   std::optional<LineProblem> numbers(std::size_t first, std::size_t count, double* out) const;
 
   const CarmenSettings settings_;
@@ -86,6 +117,11 @@ class CarmenReader final : public SampleSource {
   std::vector<double> values_;
   std::deque<Sample> pending_;
   std::optional<std::array<double, 3>> flaser_pose_;  ///< x y theta while the last record is FLASER
+  Stamp flaser_stamp_;                                ///< the stamp of that FLASER
+  bool flaser_seen_ = false;
+  std::optional<SE2> flaser_mounting_;          ///< T_robot_laser from the first FLASER's pose pair
+  std::optional<double> param_laser_offset_m_;  ///< PARAM robot_frontlaser_offset
+  std::uint64_t mounting_mismatches_ = 0;
   std::optional<Stamp> last_stamp_;
   SourceCounters counters_;
   std::uint64_t skipped_records_ = 0;

@@ -108,6 +108,11 @@ class EkfEstimator : public PoseEstimator {
   SE2 pose() const override { return filter_.pose(); }
   Eigen::Matrix3d covariance() const override { return filter_.poseCovariance(); }
 
+  /// A scan update from outside (a scan-to-submap match): T_map_robot measured with
+  /// `covariance`, gated (3 dof), Joseph form. Meant for a filter whose own scan matching is off
+  /// (its anchor then stays at the map origin).
+  Correction updateWithScanPose(const SE2& T_map_robot, const Eigen::Matrix3d& covariance);
+
   double gyroBias() const { return filter_.state()(state::kGyroBias); }
   const PoseFilter& filter() const { return filter_; }
   const EkfCounters& counters() const { return counters_; }

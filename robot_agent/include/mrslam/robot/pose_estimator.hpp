@@ -1,7 +1,9 @@
 #pragma once
-// The interface of the robot's pose estimators: wheel odometry now, the cascaded EKF later.
+// The interface of the robot's pose estimators: dead reckoning, the cascaded EKF, and the
+// submap SLAM whose pose graph revises past poses and draws its own map.
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "mrslam/common/occupancy_grid.hpp"
 #include "mrslam/common/samples.hpp"
@@ -20,6 +22,17 @@ class PoseEstimator {
   virtual void addScan(const LaserScan& scan, const OccupancyGrid& map) = 0;
 
   virtual SE2 pose() const = 0;
+
+  /// True when the estimator draws the map itself (map()); the pipeline then maps nothing.
+  virtual bool drawsItsOwnMap() const { return false; }
+  /// The map this estimator draws itself (from submaps at their optimised poses), or null: the
+  /// pipeline then inserts every scan at pose() into a grid of its own.
+  virtual const OccupancyGrid* map() const { return nullptr; }
+  /// T_map_robot at every scan given to addScan so far, as the estimator now believes them (loop
+  /// closure moves past poses); empty when it never revises a pose once given.
+  virtual std::vector<SE2> revisedScanPoses() const { return {}; }
+  /// The source has ended: a last optimisation, where the estimator makes them.
+  virtual void finish() {}
   /// Covariance of (x, y, theta).
   virtual Eigen::Matrix3d covariance() const = 0;
 };

@@ -3,6 +3,7 @@
 // source it names.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "mrslam/common/dds_settings.hpp"
@@ -39,7 +40,8 @@ struct RobotConfig {
   drivers::SightingSettings sightings;  ///< simulator.sightings: teammates it can see
   DiffDriveParams platform;
   SensorMounting mounting;
-  OdometryNoise odometry_noise;  ///< odometry increments' noise (both estimators use it)
+  bool laser_mounting_unset = false;  ///< no `laser:` section: the log's mounting is taken
+  OdometryNoise odometry_noise;       ///< odometry increments' noise (both estimators use it)
   EstimatorSettings estimator;
   MappingSettings mapping;
   RunnerSettings runner;
@@ -54,6 +56,11 @@ RobotConfig loadRobotConfig(const std::string& path);
 /// Opens the configured source, wrapped in an OdometryNoiseSource when source.odometry_noise is
 /// on. Throws std::runtime_error when it cannot be opened.
 std::unique_ptr<drivers::SampleSource> openSource(const RobotConfig& config);
+
+/// When the config left the laser mounting unset and its source is a CARMEN log, sets
+/// mounting.T_robot_laser to the one the log records (CarmenReader::laserMounting) and returns
+/// it; nothing otherwise. Opens the log (std::runtime_error when it cannot).
+std::optional<SE2> applyLogLaserMounting(RobotConfig& config);
 
 /// The estimator of `type` with the config's platform, mounting and settings.
 std::unique_ptr<PoseEstimator> makeEstimator(const RobotConfig& config, EstimatorType type);

@@ -46,11 +46,17 @@ class RobotPipeline {
                 std::unique_ptr<PoseEstimator> estimator);
 
   Update process(const Sample& sample);
+  /// The samples have ended: the estimator's last optimisation (its map and poses settle).
+  void finish() { estimator_->finish(); }
+  const PoseEstimator& estimator() const { return *estimator_; }
 
   SE2 pose() const { return estimator_->pose(); }
   Eigen::Matrix3d covariance() const { return estimator_->covariance(); }
-  const OccupancyGrid& grid() const { return mapper_.grid(); }
-  const std::vector<TrajectoryPoint>& trajectory() const { return trajectory_; }
+  /// The robot's map: the estimator's own (drawn from its optimised submaps) when it has one,
+  /// else every scan inserted at its pose.
+  const OccupancyGrid& grid() const;
+  /// The pose at every scan; revised by the estimator's loop closures where it makes them.
+  const std::vector<TrajectoryPoint>& trajectory() const;
   const PipelineCounters& counters() const { return counters_; }
   /// The newest sighting (valid after process() returned kSighting).
   const SightingReport& lastSighting() const { return last_sighting_; }
@@ -62,7 +68,7 @@ class RobotPipeline {
 
   std::unique_ptr<PoseEstimator> estimator_;
   GridMapper mapper_;
-  std::vector<TrajectoryPoint> trajectory_;
+  mutable std::vector<TrajectoryPoint> trajectory_;
   PipelineCounters counters_;
   SightingReport last_sighting_;
   Stamp latest_stamp_;
