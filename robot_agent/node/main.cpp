@@ -30,6 +30,7 @@ class NoOutput : public mrslam::robot::RobotOutput {
   void publishPose(mrslam::Stamp, const mrslam::SE2&, const Eigen::Matrix3d&) override {}
   void publishMap(const mrslam::robot::MapSnapshot&) override {}
   void publishStatus(const mrslam::robot::StatusReport&) override {}
+  bool wantsMaps() const override { return false; }
 };
 
 struct Options {

@@ -123,6 +123,9 @@ MapSnapshot RobotRunner::snapshot(bool is_final) const {
 }
 
 void RobotRunner::publishMap(bool is_final) {
+  if (!output_.wantsMaps()) {
+    return;  // a map nobody reads is not drawn
+  }
   output_.publishMap(snapshot(is_final));
   ++maps_published_;
   last_map_stamp_ = pipeline_.latestStamp();

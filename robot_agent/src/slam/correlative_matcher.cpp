@@ -39,19 +39,42 @@ void cellsOf(const ProbabilityGrid& grid, const SE2& T_submap_robot,
              const std::vector<Eigen::Vector2d>& points_robot,
              std::vector<Eigen::Vector2i>* cells) {
   cells->resize(points_robot.size());
+  const Eigen::Matrix2d R = T_submap_robot.rotation();  // once, not per point
+  const Eigen::Vector2d t = T_submap_robot.translation();
   for (std::size_t k = 0; k < points_robot.size(); ++k) {
-    (*cells)[k] = cellOf(grid, T_submap_robot * points_robot[k]);
+    (*cells)[k] = cellOf(grid, R * points_robot[k] + t);
   }
 }
 
-/// Mean probability of the cells shifted by `shift` (step 4).
-double meanProbability(const ProbabilityGrid& grid, const std::vector<Eigen::Vector2i>& cells,
-                       const Eigen::Vector2i& shift, float p_min) {
-  double sum = 0.0;
+/// Sums, over the points, of the probability of each point's cell shifted by every (jx, jy) of
+/// the window |j| ≤ w (step 4), row-major in `sums`. Points outer, shifts inner: one bounds check
+/// per point and the grid's rows read in order.
+void sumShiftedProbabilities(const ProbabilityGrid& grid, const std::vector<Eigen::Vector2i>& cells,
+                             int w, float p_min, std::vector<double>* sums) {
+  const int side = 2 * w + 1;
+  sums->assign(static_cast<std::size_t>(side) * static_cast<std::size_t>(side), 0.0);
+  const std::vector<float>& probability = grid.cells();
+  const Eigen::Vector2i corner = Eigen::Vector2i::Constant(w);
   for (const Eigen::Vector2i& cell : cells) {
-    sum += grid.probability(cell + shift, p_min);
+    const bool inside = grid.contains(cell - corner) && grid.contains(cell + corner);
+    for (int jy = -w; jy <= w; ++jy) {
+      double* out =
+          sums->data() + static_cast<std::size_t>(jy + w) * static_cast<std::size_t>(side);
+      if (inside) {
+        const float* row =
+            probability.data() +
+            static_cast<std::size_t>(cell.y() + jy) * static_cast<std::size_t>(grid.width()) +
+            static_cast<std::size_t>(cell.x() - w);
+        for (int k = 0; k < side; ++k) {
+          out[k] += row[k] > 0.0f ? row[k] : p_min;
+        }
+      } else {
+        for (int jx = -w; jx <= w; ++jx) {
+          out[jx + w] += grid.probability(cell + Eigen::Vector2i(jx, jy), p_min);
+        }
+      }
+    }
   }
-  return sum / static_cast<double>(cells.size());
 }
 
 }  // namespace
@@ -73,13 +96,19 @@ std::optional<CorrelativeMatch> CorrelativeMatcher::match(
   const double step = angularSearchStep(r, points_robot);
   std::optional<CorrelativeMatch> best;
   std::vector<Eigen::Vector2i> cells;
+  std::vector<double> sums;
+  const auto count = static_cast<double>(points_robot.size());
   for (const double dtheta : rotationOffsets(settings_.angular_search_window_rad, step)) {
     const double theta = T_submap_robot_guess.theta() + dtheta;
     cellsOf(grid, SE2(T_submap_robot_guess.x(), T_submap_robot_guess.y(), theta), points_robot,
             &cells);
+    sumShiftedProbabilities(grid, cells, w, p_min, &sums);
     for (int jy = -w; jy <= w; ++jy) {
       for (int jx = -w; jx <= w; ++jx) {
-        const double score = meanProbability(grid, cells, {jx, jy}, p_min);
+        const double score =
+            sums[static_cast<std::size_t>(jy + w) * static_cast<std::size_t>(2 * w + 1) +
+                 static_cast<std::size_t>(jx + w)] /
+            count;
         const double cost = settings_.translation_delta_cost_weight * r * std::hypot(jx, jy) +
                             settings_.rotation_delta_cost_weight * std::abs(dtheta);
         const double weighted = score * std::exp(-cost);  // step 5

@@ -1,7 +1,10 @@
 #include "mrslam/robot/slam/fast_correlative_matcher.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
+#include <limits>
 #include <stdexcept>
 
 #include "mrslam/robot/slam/correlative_matcher.hpp"
@@ -53,7 +56,10 @@ struct FastCorrelativeMatcher::Search {
   int wx = 0;  ///< |j_x| ≤ wx
   int wy = 0;
   std::vector<double> rotations;
-  std::vector<std::vector<Eigen::Vector2i>> cells;  ///< per rotation, padded cells (step 3)
+  std::vector<std::vector<Eigen::Vector2i>> cells;   ///< per rotation, padded cells (step 3)
+  std::vector<std::vector<std::ptrdiff_t>> offsets;  ///< ... as offsets into a padded grid
+  std::vector<Eigen::Vector2i> low;                  ///< per rotation, the cells' smallest x, y
+  std::vector<Eigen::Vector2i> high;                 ///< ... and largest
 };
 
 FastCorrelativeMatcher::FastCorrelativeMatcher(const ProbabilityGrid& grid,
@@ -90,13 +96,22 @@ void FastCorrelativeMatcher::precompute(const ProbabilityGrid& grid) {
   }
   for (int h = 1; h < depth(); ++h) {
     const int s = 1 << (h - 1);
+    const std::vector<std::uint8_t>& below = grids_[static_cast<std::size_t>(h - 1)];
     std::vector<std::uint8_t>& level = grids_[static_cast<std::size_t>(h)];
+    const auto at = [&](int u, int v) {
+      return static_cast<std::size_t>(v) * static_cast<std::size_t>(padded_width_) +
+             static_cast<std::size_t>(u);
+    };
     for (int v = 0; v < padded_height_; ++v) {
+      const bool rows_inside = v + s < padded_height_;
       for (int u = 0; u < padded_width_; ++u) {
-        level[static_cast<std::size_t>(v) * static_cast<std::size_t>(padded_width_) +
-              static_cast<std::size_t>(u)] =
-            std::max({valueAt(h - 1, {u, v}), valueAt(h - 1, {u + s, v}),
-                      valueAt(h - 1, {u, v + s}), valueAt(h - 1, {u + s, v + s})});
+        if (rows_inside && u + s < padded_width_) {
+          level[at(u, v)] = std::max(std::max(below[at(u, v)], below[at(u + s, v)]),
+                                     std::max(below[at(u, v + s)], below[at(u + s, v + s)]));
+        } else {
+          level[at(u, v)] = std::max({valueAt(h - 1, {u, v}), valueAt(h - 1, {u + s, v}),
+                                      valueAt(h - 1, {u, v + s}), valueAt(h - 1, {u + s, v + s})});
+        }
       }
     }
   }
@@ -113,9 +128,11 @@ std::uint8_t FastCorrelativeMatcher::valueAt(int height, const Eigen::Vector2i& 
 }
 
 Eigen::Vector2i FastCorrelativeMatcher::paddedCellOf(const Eigen::Vector2d& point_submap) const {
-  const Eigen::Vector2d lattice = (point_submap / resolution_m_).array().floor();
-  const Eigen::Vector2d clamped = lattice.cwiseMax(-kFarCell).cwiseMin(kFarCell);
-  return clamped.cast<int>() - origin_cell_ + Eigen::Vector2i::Constant(pad_);
+  const auto lattice = [this](double metres) {
+    return static_cast<int>(std::clamp(std::floor(metres / resolution_m_), -kFarCell, kFarCell));
+  };
+  return {lattice(point_submap.x()) - origin_cell_.x() + pad_,
+          lattice(point_submap.y()) - origin_cell_.y() + pad_};
 }
 
 double FastCorrelativeMatcher::probabilityOf(double mean_value) const {
@@ -172,21 +189,40 @@ std::int64_t FastCorrelativeMatcher::sumThreshold(double min_score, std::size_t 
 
 std::int64_t FastCorrelativeMatcher::boundOf(const Search& search, const Candidate& candidate,
                                              int height) const {
+  const auto rotation = static_cast<std::size_t>(candidate.rotation);
   const Eigen::Vector2i shift(candidate.jx, candidate.jy);
+  const Eigen::Vector2i low = search.low[rotation] + shift;
+  const Eigen::Vector2i high = search.high[rotation] + shift;
   std::int64_t sum = 0;
-  for (const Eigen::Vector2i& cell : search.cells[static_cast<std::size_t>(candidate.rotation)]) {
+  if (low.x() >= 0 && low.y() >= 0 && high.x() < padded_width_ && high.y() < padded_height_) {
+    // Every cell inside the grid: no bounds check per point.
+    const std::uint8_t* base = grids_[static_cast<std::size_t>(height)].data() +
+                               static_cast<std::ptrdiff_t>(shift.y()) * padded_width_ + shift.x();
+    for (const std::ptrdiff_t offset : search.offsets[rotation]) {
+      sum += base[offset];
+    }
+    return sum;
+  }
+  for (const Eigen::Vector2i& cell : search.cells[rotation]) {
     sum += valueAt(height, cell + shift);
   }
   return sum;
 }
 
-void FastCorrelativeMatcher::scoreAndSort(const Search& search, std::vector<Candidate>& candidates,
-                                          int height) const {
-  for (Candidate& candidate : candidates) {
-    candidate.sum = boundOf(search, candidate, height);
+void FastCorrelativeMatcher::scoreAndSort(const Search& search, Candidate* candidates,
+                                          std::size_t count, int height) const {
+  for (std::size_t i = 0; i < count; ++i) {
+    candidates[i].sum = boundOf(search, candidates[i], height);
   }
-  std::sort(candidates.begin(), candidates.end(),
-            [](const Candidate& a, const Candidate& b) { return a.sum > b.sum; });
+  // Insertion sort, best first: a split has at most four children; the first line is sorted once.
+  for (std::size_t i = 1; i < count; ++i) {
+    const Candidate moving = candidates[i];
+    std::size_t j = i;
+    for (; j > 0 && candidates[j - 1].sum < moving.sum; --j) {
+      candidates[j] = candidates[j - 1];
+    }
+    candidates[j] = moving;
+  }
 }
 
 // Step 4, first line: the top-height candidates tiling the window, for every rotation.
@@ -201,14 +237,19 @@ std::vector<FastCorrelativeMatcher::Candidate> FastCorrelativeMatcher::initialCa
       }
     }
   }
-  scoreAndSort(search, candidates, depth() - 1);
+  for (Candidate& candidate : candidates) {
+    candidate.sum = boundOf(search, candidate, depth() - 1);
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.sum > b.sum; });
   return candidates;
 }
 
 // Step 4: candidates sorted best first; `best` holds the score to beat.
-void FastCorrelativeMatcher::descend(const Search& search, std::vector<Candidate>& candidates,
+void FastCorrelativeMatcher::descend(const Search& search, Candidate* candidates, std::size_t count,
                                      int height, Candidate* best) const {
-  for (const Candidate& candidate : candidates) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const Candidate& candidate = candidates[i];
     if (candidate.sum <= best->sum) {
       return;  // this and every later bound cannot beat the best
     }
@@ -217,18 +258,18 @@ void FastCorrelativeMatcher::descend(const Search& search, std::vector<Candidate
       return;
     }
     const int half = 1 << (height - 1);
-    std::vector<Candidate> children;
-    children.reserve(4);
+    std::array<Candidate, 4> children;
+    std::size_t child_count = 0;
     for (int dy = 0; dy <= half; dy += half) {
       for (int dx = 0; dx <= half; dx += half) {
         if (candidate.jx + dx <= search.wx && candidate.jy + dy <= search.wy) {
-          children.push_back(
-              Candidate{candidate.rotation, candidate.jx + dx, candidate.jy + dy, 0});
+          children[child_count++] =
+              Candidate{candidate.rotation, candidate.jx + dx, candidate.jy + dy, 0};
         }
       }
     }
-    scoreAndSort(search, children, height - 1);
-    descend(search, children, height - 1, best);
+    scoreAndSort(search, children.data(), child_count, height - 1);
+    descend(search, children.data(), child_count, height - 1, best);
   }
 }
 
@@ -248,15 +289,27 @@ std::optional<FastMatch> FastCorrelativeMatcher::search(
     const SE2 T_submap_rotated(T_submap_centre.x(), T_submap_centre.y(),
                                T_submap_centre.theta() + dtheta);
     std::vector<Eigen::Vector2i>& cells = search.cells.emplace_back();
+    std::vector<std::ptrdiff_t>& offsets = search.offsets.emplace_back();
     cells.reserve(points_robot.size());
+    offsets.reserve(points_robot.size());
+    Eigen::Vector2i low = Eigen::Vector2i::Constant(std::numeric_limits<int>::max());
+    Eigen::Vector2i high = Eigen::Vector2i::Constant(std::numeric_limits<int>::min());
+    const Eigen::Matrix2d R = T_submap_rotated.rotation();
+    const Eigen::Vector2d t = T_submap_rotated.translation();
     for (const Eigen::Vector2d& point : points_robot) {
-      cells.push_back(paddedCellOf(T_submap_rotated * point));
+      const Eigen::Vector2i cell = paddedCellOf(R * point + t);
+      cells.push_back(cell);
+      offsets.push_back(static_cast<std::ptrdiff_t>(cell.y()) * padded_width_ + cell.x());
+      low = low.cwiseMin(cell);
+      high = high.cwiseMax(cell);
     }
+    search.low.push_back(low);
+    search.high.push_back(high);
   }
   Candidate best;
   best.sum = sumThreshold(min_score, points_robot.size());
   std::vector<Candidate> candidates = initialCandidates(search);
-  descend(search, candidates, depth() - 1, &best);
+  descend(search, candidates.data(), candidates.size(), depth() - 1, &best);
   if (best.rotation < 0) {
     return std::nullopt;
   }

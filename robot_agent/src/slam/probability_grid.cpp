@@ -62,6 +62,43 @@ std::size_t ProbabilityGrid::knownCellCount() const {
       std::count_if(probability_.begin(), probability_.end(), [](float p) { return p > 0.0f; }));
 }
 
+void ProbabilityGrid::shrinkToKnown() {
+  Eigen::Vector2i low(width_, height_);
+  Eigen::Vector2i high(-1, -1);
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      if (probability_[index({x, y})] > 0.0f) {
+        low = low.cwiseMin(Eigen::Vector2i(x, y));
+        high = high.cwiseMax(Eigen::Vector2i(x, y));
+      }
+    }
+  }
+  std::vector<std::uint32_t>().swap(touched_);
+  if (high.x() < 0) {
+    std::vector<float>().swap(probability_);
+    width_ = 0;
+    height_ = 0;
+    return;
+  }
+  const int new_width = high.x() - low.x() + 1;
+  const int new_height = high.y() - low.y() + 1;
+  std::vector<float> probability(static_cast<std::size_t>(new_width) * new_height);
+  for (int y = 0; y < new_height; ++y) {
+    std::copy_n(probability_.begin() + static_cast<std::ptrdiff_t>(index({low.x(), low.y() + y})),
+                new_width, probability.begin() + static_cast<std::ptrdiff_t>(y) * new_width);
+  }
+  probability_.swap(probability);
+  width_ = new_width;
+  height_ = new_height;
+  origin_cell_ += low;
+}
+
+void ProbabilityGrid::ensureMarks() {
+  if (touched_.size() != probability_.size()) {
+    touched_.assign(probability_.size(), 0);  // after shrinkToKnown: no cell marked this scan
+  }
+}
+
 void ProbabilityGrid::ensureContains(const Eigen::Vector2d& min_m, const Eigen::Vector2d& max_m) {
   if (!min_m.allFinite() || !max_m.allFinite()) {
     throw std::out_of_range("probability grid: non-finite extent");
@@ -101,6 +138,7 @@ void ProbabilityGrid::ensureContains(const Eigen::Vector2d& min_m, const Eigen::
     new_low.array() -= kMinChunkCells;
     new_high.array() += kMinChunkCells;
   }
+  ensureMarks();
   const int new_width = new_high.x() - new_low.x() + 1;
   const int new_height = new_high.y() - new_low.y() + 1;
   std::vector<float> probability(static_cast<std::size_t>(new_width) * new_height, 0.0f);
@@ -177,6 +215,7 @@ void ProbabilityGrid::insertScan(const Eigen::Vector2d& origin_m,
     }
   }
   ensureContains(low, high);
+  ensureMarks();
   ++scan_number_;
   if (scan_number_ == 0) {  // wrapped: forget the old marks so none equals the new number
     std::fill(touched_.begin(), touched_.end(), 0);

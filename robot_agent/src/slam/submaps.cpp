@@ -31,6 +31,7 @@ std::vector<std::shared_ptr<Submap>> ActiveSubmaps::insert(const RangeData& data
   if (active_.back()->insertions >= settings_.num_range_data) {
     if (active_.size() == 2) {
       active_.front()->finished = true;
+      active_.front()->grid.shrinkToKnown();  // it never changes again
       finished_ = active_.front();
       active_.erase(active_.begin());
     }

@@ -45,6 +45,38 @@ TEST(ProbabilityGridTest, GrowingKeepsCellsWhereTheyWere) {
   EXPECT_NEAR(grid.centreOf(grid.cellOf({0.51, 0.52})).x(), 0.525, 1e-9);
 }
 
+TEST(ProbabilityGridTest, ShrinkingToTheKnownCellsKeepsEveryProbability) {
+  ProbabilityGrid grid(ProbabilityGridSettings{});
+  grid.insertScan({0, 0}, {{3.0, 1.0}, {-2.0, 0.5}}, {{0.0, 4.0}});
+  grid.insertScan({0, 0}, {{-20.0, 15.0}}, {});  // grows the grid by more than it needs
+  const std::vector<Eigen::Vector2d> probes = {
+      {3.0, 1.0}, {-2.0, 0.5}, {0.0, 2.0}, {-20.0, 15.0}, {-10.0, 7.5}, {5.0, -5.0}, {-3.0, 14.0}};
+  std::vector<float> before;
+  for (const Eigen::Vector2d& probe : probes) {
+    before.push_back(grid.probability(grid.cellOf(probe), 0.0f));
+  }
+  const std::size_t known = grid.knownCellCount();
+  const int area_before = grid.width() * grid.height();
+  grid.shrinkToKnown();
+  EXPECT_LT(grid.width() * grid.height(), area_before);
+  EXPECT_EQ(grid.knownCellCount(), known);
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    EXPECT_FLOAT_EQ(grid.probability(grid.cellOf(probes[i]), 0.0f), before[i]) << i;
+  }
+  // The box is tight: the hits at x = -20 and x = 3 are its first and last columns.
+  EXPECT_EQ(grid.cellOf({-20.0, 15.0}).x(), 0);
+  EXPECT_EQ(grid.cellOf({3.0, 1.0}).x(), grid.width() - 1);
+  // Insertions still work after it, and count once per scan.
+  grid.insertScan({0, 0}, {{3.0, 1.0}, {3.01, 1.01}, {8.0, 8.0}}, {});
+  EXPECT_NEAR(grid.probability(grid.cellOf({3.0, 1.0})), 121.0 / 202.0, 1e-5);
+  EXPECT_NEAR(grid.probability(grid.cellOf({8.0, 8.0})), 0.55, 1e-6);
+  ProbabilityGrid empty(ProbabilityGridSettings{});
+  empty.shrinkToKnown();
+  EXPECT_EQ(empty.width(), 0);
+  empty.insertScan({0, 0}, {{1.0, 1.0}}, {});
+  EXPECT_NEAR(empty.probability(empty.cellOf({1.0, 1.0})), 0.55, 1e-6);
+}
+
 TEST(ProbabilityGridTest, BadSettingsAndExtentsAreRefused) {
   ProbabilityGridSettings bad;
   bad.hit_probability = 0.4;

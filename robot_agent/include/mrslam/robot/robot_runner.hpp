@@ -47,6 +47,8 @@ class RobotOutput {
   virtual void publishPose(Stamp stamp, const SE2& T_map_robot,
                            const Eigen::Matrix3d& covariance) = 0;
   virtual void publishMap(const MapSnapshot& snapshot) = 0;
+  /// false: nobody reads the maps while the run goes on (only the final one is drawn).
+  virtual bool wantsMaps() const { return true; }
   virtual void publishStatus(const StatusReport& report) = 0;
   /// A rendezvous: another robot seen (outputs without a rendezvous topic ignore it).
   virtual void publishSighting(const SightingReport& /*report*/) {}

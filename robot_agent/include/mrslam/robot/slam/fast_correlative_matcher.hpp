@@ -85,11 +85,12 @@ class FastCorrelativeMatcher {
                                   int window_cells_y, double angular_window_rad,
                                   const std::vector<Eigen::Vector2d>& points_robot,
                                   double min_score) const;
-  void descend(const Search& search, std::vector<Candidate>& candidates, int height,
+  void descend(const Search& search, Candidate* candidates, std::size_t count, int height,
                Candidate* best) const;
   std::vector<Candidate> initialCandidates(const Search& search) const;
   std::int64_t boundOf(const Search& search, const Candidate& candidate, int height) const;
-  void scoreAndSort(const Search& search, std::vector<Candidate>& candidates, int height) const;
+  void scoreAndSort(const Search& search, Candidate* candidates, std::size_t count,
+                    int height) const;
   Eigen::Vector2i paddedCellOf(const Eigen::Vector2d& point_submap) const;
   std::uint8_t valueAt(int height, const Eigen::Vector2i& padded_cell) const;
   double probabilityOf(double mean_value) const;

@@ -66,6 +66,11 @@ class ProbabilityGrid {
   /// lattice places). Throws std::out_of_range for non-finite corners.
   void ensureContains(const Eigen::Vector2d& min_m, const Eigen::Vector2d& max_m);
 
+  /// Crops the grid to the smallest box holding every known cell (cells keep their lattice
+  /// places; an empty grid becomes 0 × 0) and frees the per-scan marks: a finished submap's
+  /// memory. Later insertions still work.
+  void shrinkToKnown();
+
   /// Row-major probabilities (0 = unknown), width() × height(), row y = cell y.
   const std::vector<float>& cells() const { return probability_; }
 
@@ -74,6 +79,7 @@ class ProbabilityGrid {
     return static_cast<std::size_t>(cell.y()) * static_cast<std::size_t>(width_) +
            static_cast<std::size_t>(cell.x());
   }
+  void ensureMarks();
   void update(const Eigen::Vector2i& cell, float odds_factor);
   void traceMisses(const Eigen::Vector2i& from, const Eigen::Vector2i& to, bool include_end);
 
