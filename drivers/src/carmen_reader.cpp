@@ -1,5 +1,7 @@
 #include "mrslam/drivers/carmen_reader.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -207,9 +209,9 @@ std::optional<LineProblem> CarmenReader::parseFlaser() {
   const double* pose = values_.data() + count;
   const SE2 T_world_laser(pose[0], pose[1], pose[2]);
   const SE2 T_world_robot(pose[3], pose[4], pose[5]);
-  scan.logged_pose = T_world_laser;
+  scan.logged_pose = T_corrected_raw_ * T_world_laser;
   if (includesFlaserOdom(settings_.odometry)) {
-    pending_.emplace_back(OdometryPose{*stamp, T_world_robot});
+    pending_.emplace_back(OdometryPose{*stamp, T_corrected_raw_ * T_world_robot});
   }
   pending_.emplace_back(std::move(scan));
   flaser_pose_ = std::array<double, 3>{pose[0], pose[1], pose[2]};
@@ -269,10 +271,32 @@ std::optional<LineProblem> CarmenReader::parseOdom() {
   if (reanchor) {
     ++reanchor_odom_records_;
   }
+  const SE2 T_world_robot = reanchor
+                                ? T_corrected_raw_ * SE2(values[0], values[1], values[2])
+                                : correctReversing(SE2(values[0], values[1], values[2]), values[3]);
   if (includesOdomLines(settings_.odometry) && (!reanchor || settings_.emit_reanchor_odom)) {
-    pending_.emplace_back(OdometryPose{*stamp, SE2(values[0], values[1], values[2])});
+    pending_.emplace_back(OdometryPose{*stamp, T_world_robot});
   }
   return std::nullopt;
+}
+
+SE2 CarmenReader::correctReversing(const SE2& T_world_robot_raw, double tv_mps) {
+  if (last_raw_odom_) {
+    const SE2 step = last_raw_odom_->inverse() * T_world_robot_raw;
+    if (tv_mps < -kReversingSpeedMps && step.x() > kReversingStepM) {
+      const SE2 mirrored(-step.x(), -step.y(), step.theta());
+      const SE2 T_world_corrected = T_corrected_raw_ * *last_raw_odom_ * mirrored;
+      T_corrected_raw_ = T_world_corrected * T_world_robot_raw.inverse();
+      if (++reversed_odometry_steps_ == 1) {
+        spdlog::warn(
+            "carmen: {}: an ODOM step runs {:.3f} m ahead while reversing at {:.2f} m/s: "
+            "mirrored, as every such step will be (counted)",
+            settings_.path, step.x(), tv_mps);
+      }
+    }
+  }
+  last_raw_odom_ = T_world_robot_raw;
+  return T_corrected_raw_ * T_world_robot_raw;
 }
 
 }  // namespace mrslam::drivers

@@ -1,5 +1,7 @@
 #include "mrslam/robot/ekf_estimator.hpp"
 
+#include <limits>
+
 #include <cmath>
 
 #include "mrslam/robot/chi_square.hpp"
@@ -110,11 +112,11 @@ void EkfEstimator::addScan(const LaserScan& scan, const OccupancyGrid&) {
     last_correction_.reset();
     timings_.scan_matching_s += secondsSince(start);
     if (last_match_) {
-      updateWithScanMatch(*last_match_);
+      updateWithScanMatch(*last_match_, gate_3dof_sq_);
     }
     if (newest) {
       const std::optional<Correction> map_correction = last_correction_;
-      updateWithScanMatch(*newest);
+      updateWithScanMatch(*newest, gate_3dof_sq_);
       last_correction_ = map_correction;  // lastScanCorrection() stays the local map's
     }
     start = Clock::now();
@@ -131,7 +133,7 @@ void EkfEstimator::addScan(const LaserScan& scan, const OccupancyGrid&) {
   last_scan_pose_ = pose();
 }
 
-void EkfEstimator::updateWithScanMatch(const ScanMatch& match) {
+void EkfEstimator::updateWithScanMatch(const ScanMatch& match, double gate_sq) {
   const bool usable = match.icp.converged || (settings_.scan_matching.accept_unconverged &&
                                               match.icp.status == IcpStatus::kNotConverged);
   if (!usable) {
@@ -145,7 +147,7 @@ void EkfEstimator::updateWithScanMatch(const ScanMatch& match) {
                     wrapAngle(match.T_anchor_robot.theta() - r.theta()));
   Eigen::Matrix<double, 3, state::kSize> H = Eigen::Matrix<double, 3, state::kSize>::Zero();
   H.block<3, 3>(0, state::kX).setIdentity();
-  last_correction_ = filter_.correct<3>(y, H, match.covariance, gate_3dof_sq_);
+  last_correction_ = filter_.correct<3>(y, H, match.covariance, gate_sq);
   if (last_correction_->accepted) {
     ++counters_.scan_updates;
     counters_.scan_nis_sum += last_correction_->mahalanobis_sq;
@@ -156,14 +158,14 @@ void EkfEstimator::updateWithScanMatch(const ScanMatch& match) {
 }
 
 Correction EkfEstimator::updateWithScanPose(const SE2& T_map_robot,
-                                            const Eigen::Matrix3d& covariance) {
+                                            const Eigen::Matrix3d& covariance, bool gated) {
   const StateVector& x = filter_.state();
   const SE2 T_map_anchor(x(state::kAnchorX), x(state::kAnchorY), x(state::kAnchorTheta));
   ScanMatch match;
   match.T_anchor_robot = T_map_anchor.inverse() * T_map_robot;
   match.covariance = covariance;
   match.icp.converged = true;
-  updateWithScanMatch(match);
+  updateWithScanMatch(match, gated ? gate_3dof_sq_ : std::numeric_limits<double>::infinity());
   return last_correction_ ? *last_correction_ : Correction{};
 }
 

@@ -43,9 +43,19 @@ bool LoopCloser::isSearchable(int submap) const {
          submaps_[static_cast<std::size_t>(submap)].matcher != nullptr;
 }
 
+double LoopCloser::saturatingDrift() const {
+  const auto reach = [](double widest, double narrowest, double growth) {
+    return growth > 0.0 ? std::max(0.0, widest - narrowest) / growth : 0.0;
+  };
+  return std::max(reach(settings_.search.linear_search_window_m, settings_.min_window_m,
+                        settings_.window_growth_per_m),
+                  reach(settings_.search.angular_search_window_rad, settings_.min_window_rad,
+                        settings_.window_growth_rad_per_m));
+}
+
 std::optional<LoopClosure> LoopCloser::search(int submap, const SE2& T_submap_node_guess,
                                               const std::vector<Eigen::Vector2d>& points,
-                                              double travelled_m) {
+                                              double drift_m) {
   if (!isSearchable(submap)) {
     return std::nullopt;
   }
@@ -62,10 +72,10 @@ std::optional<LoopClosure> LoopCloser::search(int submap, const SE2& T_submap_no
   ++counters_.searches;
   const double window_m =
       std::min(settings_.search.linear_search_window_m,
-               settings_.min_window_m + settings_.window_growth_per_m * travelled_m);
+               settings_.min_window_m + settings_.window_growth_per_m * drift_m);
   const double window_rad =
       std::min(settings_.search.angular_search_window_rad,
-               settings_.min_window_rad + settings_.window_growth_rad_per_m * travelled_m);
+               settings_.min_window_rad + settings_.window_growth_rad_per_m * drift_m);
   const std::optional<FastMatch> found =
       target.matcher->match(T_submap_node_guess, near, settings_.min_score, window_m, window_rad);
   if (!found) {

@@ -93,8 +93,6 @@ LoopClosureSettings loadLoopClosure(const Config& s, LoopClosureSettings l) {
   l.window_growth_per_m = s.getDouble("window_growth_per_m", l.window_growth_per_m, {0.0, 10.0});
   l.window_growth_rad_per_m =
       s.getDouble("window_growth_rad_per_m", l.window_growth_rad_per_m, {0.0, 10.0});
-  l.window_reset_path_m =
-      s.getDouble("window_reset_path_m", l.window_reset_path_m, {0.0, 100000.0});
   l.max_range_m = s.getDouble("max_range_m", l.max_range_m, {0.1, 1000.0});
   l.search.linear_search_window_m =
       s.getDouble("max_window_m", l.search.linear_search_window_m, {0.0, 100.0});
@@ -126,6 +124,7 @@ SlamSettings loadSlamSettings(const Config& section, SlamSettings settings) {
   settings.submaps = loadSubmaps(section.section("submaps"), settings.submaps);
   settings.local_matching = loadMatcher(section.section("local_matching"), settings.local_matching);
   loadCorrelative(section.section("correlative"), settings);
+  settings.gate_matches = section.getBool("gate_matches", settings.gate_matches);
   settings.motion_filter =
       loadMotionFilter(section.section("motion_filter"), settings.motion_filter);
   settings.pose_graph = loadPoseGraph(section.section("pose_graph"), settings.pose_graph);

@@ -33,7 +33,7 @@ void SlamEstimator::addScan(const LaserScan& scan, const OccupancyGrid& map) {
   ekf_.addScan(scan, map);  // predicts up to the scan
   const RangeData data = rangeDataOf(scan, mounting_.T_robot_laser, settings_.range_data);
   std::vector<Eigen::Vector2d> points = matchingPoints(data.hits, settings_.range_data);
-  matchScan(points);
+  matchScan(points, scan.stamp);
   const SE2 T_local_robot = ekf_.pose();
   if (passesMotionFilter(T_local_robot, scan.stamp)) {
     addNode(data, std::move(points), scan.stamp);
@@ -46,7 +46,7 @@ void SlamEstimator::addScan(const LaserScan& scan, const OccupancyGrid& map) {
   }
 }
 
-void SlamEstimator::matchScan(const std::vector<Eigen::Vector2d>& points) {
+void SlamEstimator::matchScan(const std::vector<Eigen::Vector2d>& points, Stamp stamp) {
   const std::shared_ptr<const Submap> submap = active_.matchingSubmap();
   if (!submap || points.empty()) {
     return;
@@ -71,11 +71,19 @@ void SlamEstimator::matchScan(const std::vector<Eigen::Vector2d>& points) {
     return;
   }
   ++counters_.matches;
+  const SE2 T_local_predicted = ekf_.pose();
+  const SE2 T_local_matched = submap->T_local_submap * fine->T_submap_robot;
   // The fit's covariance is in the submap frame, which is the local frame shifted: same axes.
   const Correction correction =
-      ekf_.updateWithScanPose(submap->T_local_submap * fine->T_submap_robot, fine->covariance);
+      ekf_.updateWithScanPose(T_local_matched, fine->covariance, settings_.gate_matches);
   if (!correction.accepted) {
     ++counters_.match_rejections;
+    const SE2 disagreement = T_local_predicted.inverse() * T_local_matched;
+    spdlog::debug(
+        "slam: scan at {:.2f} s: match gated out (d² {:.1f}): {:.3f} m {:.2f} deg from "
+        "the prediction",
+        stamp.seconds(), correction.mahalanobis_sq, disagreement.translation().norm(),
+        disagreement.theta() * 180 / M_PI);
   }
 }
 
@@ -102,13 +110,14 @@ void SlamEstimator::addNode(const RangeData& data_robot, std::vector<Eigen::Vect
   for (const auto& submap : inserted) {
     if (submap->id >= graph_.submapCount()) {
       submaps_.push_back(submap);
-      submap_travelled_m_.push_back(travelled_m_);
+      submap_first_node_.push_back(static_cast<int>(nodes_.size()));
       graph_.addSubmap(T_map_local_ * submap->T_local_submap);
       ++counters_.submaps;
     }
   }
   const int node = graph_.addNode(T_map_local_ * T_local_node, T_local_node);
   nodes_.push_back({T_local_node, std::move(points), travelled_m_, stamp});
+  drift_.addNode(travelled_m_);
   ++counters_.nodes;
   ++version_;
   for (const auto& submap : inserted) {
@@ -130,33 +139,44 @@ void SlamEstimator::addNode(const RangeData& data_robot, std::vector<Eigen::Vect
 }
 
 void SlamEstimator::searchClosuresOfNode(int node) {
+  const std::vector<double>& drift_m = drift_.distancesFrom(node, closer_.saturatingDrift());
   for (const auto& submap : submaps_) {
     if (closer_.isSearchable(submap->id)) {
-      tryClosure(submap->id, node);
+      tryClosure(submap->id, node, drift_m[static_cast<std::size_t>(middleNodeOf(submap->id))]);
     }
   }
 }
 
 void SlamEstimator::searchClosuresInSubmap(int submap) {
+  const std::vector<double>& drift_m =
+      drift_.distancesFrom(middleNodeOf(submap), closer_.saturatingDrift());
   for (int node = 0; node < static_cast<int>(nodes_.size()); ++node) {
-    tryClosure(submap, node);
+    tryClosure(submap, node, drift_m[static_cast<std::size_t>(node)]);
   }
 }
 
-void SlamEstimator::tryClosure(int submap, int node) {
+int SlamEstimator::middleNodeOf(int submap) const {
+  const int middle =
+      submap_first_node_[static_cast<std::size_t>(submap)] + settings_.submaps.num_range_data;
+  return std::min(middle, static_cast<int>(nodes_.size()) - 1);
+}
+
+void SlamEstimator::resetDriftShortcuts() {
+  drift_.clearShortcuts();
+  for (const PoseGraphConstraint& c : graph_.constraints()) {
+    if (c.active && c.kind == PoseGraphConstraint::Kind::kLoopClosure) {
+      drift_.addShortcut(c.node, middleNodeOf(c.submap));
+    }
+  }
+}
+
+void SlamEstimator::tryClosure(int submap, int node, double drift_m) {
   const SE2 T_submap_node = graph_.submapPose(submap).inverse() * graph_.nodePose(node);
   if (T_submap_node.translation().norm() > settings_.loop_closure.max_constraint_distance_m) {
     return;
   }
-  // The search window grows with the local drift the node and the submap may hold between
-  // them: the path from one to the other, unless a closure over a long path since then has
-  // tied the current pose to the rest of the map.
-  const double path_gap_m = std::abs(nodes_[static_cast<std::size_t>(node)].travelled_m -
-                                     submap_travelled_m_[static_cast<std::size_t>(submap)]);
-  const double since_long_closure_m = std::max(0.0, travelled_m_ - last_closure_travelled_m_);
-  const double travelled = std::min(path_gap_m, since_long_closure_m);
-  const std::optional<LoopClosure> closure = closer_.search(
-      submap, T_submap_node, nodes_[static_cast<std::size_t>(node)].points, travelled);
+  const std::optional<LoopClosure> closure =
+      closer_.search(submap, T_submap_node, nodes_[static_cast<std::size_t>(node)].points, drift_m);
   if (!closure) {
     return;
   }
@@ -167,9 +187,13 @@ void SlamEstimator::tryClosure(int submap, int node) {
   constraint.kind = PoseGraphConstraint::Kind::kLoopClosure;
   graph_.addConstraint(constraint);
   ++counters_.closures;
-  if (path_gap_m >= settings_.loop_closure.window_reset_path_m) {
-    last_closure_travelled_m_ = travelled_m_;
-  }
+  const SE2 correction = T_submap_node.inverse() * closure->T_submap_node;
+  spdlog::debug(
+      "slam: closure of node {} ({:.2f} s) in submap {}: score {:.2f}, {:.3f} m {:.2f} "
+      "deg from the estimate",
+      node, nodes_[static_cast<std::size_t>(node)].stamp.seconds(), submap, closure->score,
+      correction.translation().norm(), correction.theta() * 180 / M_PI);
+  drift_.addShortcut(node, middleNodeOf(submap));
 }
 
 void SlamEstimator::optimiseIfDue() {
@@ -183,6 +207,7 @@ void SlamEstimator::optimiseIfDue() {
 void SlamEstimator::optimise() {
   const SE2 before = graph_.nodePose(graph_.nodeCount() - 1);
   graph_.optimise();
+  resetDriftShortcuts();
   const SE2 after = graph_.nodePose(graph_.nodeCount() - 1);
   spdlog::debug("slam: solve {}: {} closures ({} refused), newest node moved {:.3f} m {:.2f} deg",
                 graph_.counters().solves, counters_.closures, graph_.counters().closures_refused,

@@ -341,6 +341,57 @@ TEST(CarmenReaderTest, ReadsFlaserAndOdomAndSkipsOtherRecords) {
   EXPECT_EQ(reader.describe(), "carmen log " + path);
 }
 
+// ODOM with its own translational velocity tv.
+std::string odomMoving(const std::string& pose, const std::string& tv, const std::string& stamp) {
+  return "ODOM " + pose + " " + tv + " 0 0 " + stamp + " host " + stamp + "\n";
+}
+
+TEST(CarmenReaderTest, AStepAheadWhileReversingIsMirroredAndCarriedOn) {
+  const auto folder = test::scratchFolder("log");
+  // Heading +90°: ahead is +y. Reversing at -0.3 m/s, the second step still runs 0.1 m ahead
+  // (a robot that integrated |v|); the third, driving ahead again, is kept as it is.
+  const std::string path = writeFile(
+      folder / "a.log",
+      odomMoving("1 2 1.5707963267948966", "0.3", "10.0") +
+          odomMoving("1 2.1 1.5707963267948966", "-0.3", "10.5") +
+          "FLASER 3 1 2 3 1 2.1 1.5707963267948966 1 2.1 1.5707963267948966 10.6 host 10.6\n" +
+          odomMoving("1 2.3 1.5707963267948966", "0.3", "11.0"));
+  CarmenReader reader(settingsFor(path, CarmenOdometry::kBoth));
+  const std::vector<OdometryPose> poses = only<OdometryPose>(readAll(reader));
+  ASSERT_EQ(poses.size(), 4u);
+  EXPECT_NEAR(poses[0].T_odom_robot.y(), 2.0, 1e-9);
+  EXPECT_NEAR(poses[1].T_odom_robot.x(), 1.0, 1e-9);
+  EXPECT_NEAR(poses[1].T_odom_robot.y(), 1.9, 1e-9);  // 0.1 m back, not ahead
+  EXPECT_NEAR(poses[2].T_odom_robot.y(), 1.9, 1e-9);  // the FLASER's odometry, carried along
+  EXPECT_NEAR(poses[3].T_odom_robot.y(), 2.1, 1e-9);  // 0.2 m ahead of the corrected pose
+  EXPECT_NEAR(poses[3].T_odom_robot.theta(), M_PI / 2, 1e-9);
+  EXPECT_EQ(reader.reversed_odometry_steps(), 1u);
+}
+
+TEST(CarmenReaderTest, RawFr079ReversesWithoutEverMovingBack) {
+  MRSLAM_REQUIRE_SHARED_DATA("logs/freiburg-fr079.clf.gz");
+  CarmenReader reader(
+      settingsFor(test::sharedDataPath("logs/freiburg-fr079.clf.gz"), CarmenOdometry::kOdomLines));
+  const std::vector<OdometryPose> poses = only<OdometryPose>(readAll(reader));
+  // As logged, 315 steps run ahead while tv is below -0.05 m/s, and none moves back.
+  EXPECT_EQ(reader.reversed_odometry_steps(), 315u);
+  std::size_t backward_steps = 0;
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    const SE2 step = poses[i - 1].T_odom_robot.inverse() * poses[i].T_odom_robot;
+    backward_steps += step.x() < -CarmenReader::kReversingStepM ? 1 : 0;
+  }
+  EXPECT_EQ(backward_steps, 315u);
+}
+
+TEST(CarmenReaderTest, RawIntelAndAcesNeverReverse) {
+  for (const char* log : {"logs/freiburg-intel.clf.gz", "logs/freiburg-aces.clf.gz"}) {
+    MRSLAM_REQUIRE_SHARED_DATA(log);
+    CarmenReader reader(settingsFor(test::sharedDataPath(log), CarmenOdometry::kOdomLines));
+    readAll(reader);
+    EXPECT_EQ(reader.reversed_odometry_steps(), 0u) << log;
+  }
+}
+
 TEST(CarmenReaderTest, OdometrySettingChoosesTheSource) {
   const auto folder = test::scratchFolder("log");
   const std::string path =

@@ -22,6 +22,13 @@
 // laser pose in the frame of its odometry pose (fr079: x = -0.04 m, on every line), else
 // `PARAM robot_frontlaser_offset` (an x offset). The constructor reads the log up to its first
 // FLASER line, so laserMounting() is known as soon as the reader is open.
+//
+// Reversing: an ODOM step that runs ahead while its own velocity tv is backwards (below
+// -kReversingSpeedMps) is a robot that integrated |v|: the raw fr079 log reports reversing in
+// 320 ODOM lines, yet not one of its steps moves back. Such a step is mirrored (its translation
+// turned by π in the frame of the pose before it, its turn kept), counted in
+// reversed_odometry_steps(), and every later pose, of ODOM and FLASER lines alike, is carried along
+// by the accumulated correction.
 
 #include <array>
 #include <cstddef>
@@ -67,6 +74,10 @@ class CarmenReader final : public SampleSource {
   /// counts in laser_mounting_mismatches().
   static constexpr double kMountingToleranceM = 1e-3;
   static constexpr double kMountingToleranceRad = 1e-3;
+  /// A tv this far below zero is reversing (a stopped robot's tv jitters by millimetres a second).
+  static constexpr double kReversingSpeedMps = 0.05;
+  /// ... and a step this far ahead runs against it (smaller ones are the turn's own rounding).
+  static constexpr double kReversingStepM = 1e-3;
 
   /// Checks the settings (std::invalid_argument), opens the log (std::runtime_error) and reads
   /// it up to its first FLASER line (a malformed line there under kStop: LogFormatError).
@@ -82,6 +93,8 @@ class CarmenReader final : public SampleSource {
   std::uint64_t skipped_records() const { return skipped_records_; }
   /// ODOM lines that repeat the pose of the FLASER before them (emitted or not).
   std::uint64_t reanchor_odom_records() const { return reanchor_odom_records_; }
+  /// ODOM steps that ran ahead while reversing, mirrored (see above).
+  std::uint64_t reversed_odometry_steps() const { return reversed_odometry_steps_; }
   /// Malformed lines by kind ("field count", "beam count", "not a number", "not finite",
   /// "negative", "bad stamp", "not a message").
   std::map<std::string, std::uint64_t> malformedByKind() const { return malformed_.countsByKind(); }
@@ -107,6 +120,8 @@ class CarmenReader final : public SampleSource {
   std::optional<LineProblem> parseOdom();
   std::optional<LineProblem> parseParam();
   void noteMounting(const SE2& T_world_laser, const SE2& T_world_robot);
+  /// Mirrors a step that ran against its velocity; returns the ODOM pose to emit.
+  SE2 correctReversing(const SE2& T_world_robot_raw, double tv_mps);
   std::optional<LineProblem> numbers(std::size_t first, std::size_t count, double* out) const;
 
   const CarmenSettings settings_;
@@ -126,6 +141,9 @@ class CarmenReader final : public SampleSource {
   SourceCounters counters_;
   std::uint64_t skipped_records_ = 0;
   std::uint64_t reanchor_odom_records_ = 0;
+  std::optional<SE2> last_raw_odom_;  ///< the previous ODOM pose as logged
+  SE2 T_corrected_raw_;               ///< what the mirrored steps so far moved the odometry by
+  std::uint64_t reversed_odometry_steps_ = 0;
 };
 
 }  // namespace mrslam::drivers

@@ -109,9 +109,10 @@ class EkfEstimator : public PoseEstimator {
   Eigen::Matrix3d covariance() const override { return filter_.poseCovariance(); }
 
   /// A scan update from outside (a scan-to-submap match): T_map_robot measured with
-  /// `covariance`, gated (3 dof), Joseph form. Meant for a filter whose own scan matching is off
-  /// (its anchor then stays at the map origin).
-  Correction updateWithScanPose(const SE2& T_map_robot, const Eigen::Matrix3d& covariance);
+  /// `covariance`, Joseph form, gated (3 dof) unless `gated` is false. Meant for a filter whose
+  /// own scan matching is off (its anchor then stays at the map origin).
+  Correction updateWithScanPose(const SE2& T_map_robot, const Eigen::Matrix3d& covariance,
+                                bool gated = true);
 
   double gyroBias() const { return filter_.state()(state::kGyroBias); }
   const PoseFilter& filter() const { return filter_; }
@@ -133,7 +134,7 @@ class EkfEstimator : public PoseEstimator {
   /// T_scan_beam of each beam from the dead reckoning (empty without de-skewing).
   ScanMatcher::BeamMotion beamMotion(const LaserScan& scan) const;
   void predictWithoutOdometry();
-  void updateWithScanMatch(const ScanMatch& match);
+  void updateWithScanMatch(const ScanMatch& match, double gate_sq);
   void updateHeading(const ImuSample& imu);
   void updateYawRate(const ImuSample& imu);
   /// Notes a stamp; true when it is older than the newest seen.

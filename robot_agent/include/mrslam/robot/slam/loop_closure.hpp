@@ -1,8 +1,8 @@
 #pragma once
 // Loop closure search (Hess et al., ICRA 2016, section V): a scan node is searched for in the
 // finished submaps near its current estimate by the branch-and-bound matcher
-// (fast_correlative_matcher.hpp) in a window that grows with the distance travelled since the
-// last accepted closure (the drift since then), then refined by least squares against the same
+// (fast_correlative_matcher.hpp) in a window that grows with the drift distance between the node
+// and the submap (drift_graph.hpp), then refined by least squares against the same
 // submap. A match below min_score is no closure; an accepted one is a constraint of the pose graph
 // (under its Huber loss, and refused there when the solution leaves it far off).
 
@@ -24,14 +24,11 @@ struct LoopClosureSettings {
   double min_score = 0.55;                  ///< a closure's branch-and-bound score at least this
   double min_window_m = 1.0;              ///< the search window right after a closure (half-width)
   double min_window_rad = 0.17;           ///< ... and its angular half-width
-  double window_growth_per_m = 0.1;       ///< the window widens by this per metre travelled since
+  double window_growth_per_m = 0.1;       ///< the window widens by this per metre of drift
   double window_growth_rad_per_m = 0.01;  ///< ... and turns by this per metre
-  /// A closure between a node and a submap this far apart along the path resets that growth; the
-  /// constant closures to the submaps just behind the robot (a few metres back) do not.
-  double window_reset_path_m = 20.0;
-  double max_range_m = 20.0;        ///< scan points farther are left out of the search
-  FastCorrelativeSettings search;   ///< its windows are the widest searched
-  CeresScanMatcherSettings refine;  ///< the least-squares refinement of a found closure
+  double max_range_m = 20.0;              ///< scan points farther are left out of the search
+  FastCorrelativeSettings search;         ///< its windows are the widest searched
+  CeresScanMatcherSettings refine;        ///< the least-squares refinement of a found closure
 };
 
 struct LoopClosure {
@@ -54,10 +51,12 @@ class LoopCloser {
   bool isSearchable(int submap) const;
 
   /// Searches the finished submap for a node whose robot-frame points are `points` and whose
-  /// estimated pose in that submap's frame is T_submap_node_guess; `travelled_m` is the distance
-  /// since the last accepted closure. Sampled: most calls return nullopt without a search.
+  /// estimated pose in that submap's frame is T_submap_node_guess; `drift_m` is the drift distance
+  /// between them (drift_graph.hpp). Sampled: most calls return nullopt without a search.
   std::optional<LoopClosure> search(int submap, const SE2& T_submap_node_guess,
-                                    const std::vector<Eigen::Vector2d>& points, double travelled_m);
+                                    const std::vector<Eigen::Vector2d>& points, double drift_m);
+  /// The drift at which both windows have grown to their widest: farther is all the same.
+  double saturatingDrift() const;
 
   const LoopClosureCounters& counters() const { return counters_; }
   const LoopClosureSettings& settings() const { return settings_; }

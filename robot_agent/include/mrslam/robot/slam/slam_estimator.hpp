@@ -6,7 +6,7 @@
 //  2. Scan-to-submap matching in the local frame: where the prediction is uncertain (its σ beyond
 //     correlative_sigma_*), a correlative search (correlative_matcher.hpp) finds the start; least
 //     squares on the interpolated submap (ceres_scan_matcher.hpp) gives pose and covariance, the
-//     EKF's scan update (gated).
+//     EKF's scan update (ungated unless gate_matches).
 //  3. A scan that moved past the motion filter since the last node becomes a node: it is inserted
 //     into the active submaps (submaps.hpp) and into the pose graph (pose_graph.hpp) with an
 //     intra-submap constraint for each submap it went into.
@@ -23,6 +23,7 @@
 #include "mrslam/robot/ekf_estimator.hpp"
 #include "mrslam/robot/slam/ceres_scan_matcher.hpp"
 #include "mrslam/robot/slam/correlative_matcher.hpp"
+#include "mrslam/robot/slam/drift_graph.hpp"
 #include "mrslam/robot/slam/loop_closure.hpp"
 #include "mrslam/robot/slam/pose_graph.hpp"
 #include "mrslam/robot/slam/range_data.hpp"
@@ -36,15 +37,16 @@ struct MotionFilterSettings {
   double max_time_s = 5.0;        ///< ... or this long after it
 };
 
-/// The front end's model of the odometry increments' noise, ten to thirty times the EKF's usual
-/// figures: the pose is the submap match's, odometry only seeds it. With the odometry trusted as
-/// the EKF alone trusts it, a raw log's heading error leaks into every scan update and the gate
-/// throws out the matches that disagree with it (the raw intel log: the map turned by 100° at
-/// the end); with its heading trusted even at 1 rad/rad and 0.5 rad/m, the corridors of intel's
-/// first loop still came out bowed (0.27 m, 2.6° on its relations over a minute apart).
+/// The front end's model of the odometry increments' noise. The wheels' distance is trusted as
+/// the EKF alone trusts it (10 % of the way): in a long corridor a scan pins the robot across
+/// it but hardly along it, and there only the wheels know how far it went (the raw aces log,
+/// with 1 per metre: its corridors slid by metres and three of its loops failed to close). The
+/// wheels' turn is trusted twenty to thirty times less than the EKF trusts it: a raw log's
+/// heading error leaks into every scan update otherwise (intel's first loop came out bowed,
+/// 0.27 m and 2.6° on its relations over a minute apart, even at 1 rad/rad and 0.5 rad/m).
 inline OdometryNoise frontEndOdometryNoise() {
   OdometryNoise noise;
-  noise.translation_per_m = 1.0;
+  noise.translation_per_m = 0.1;
   noise.rotation_per_rad = 2.0;
   noise.rotation_per_m = 1.0;
   return noise;
@@ -59,6 +61,11 @@ struct SlamSettings {
   CorrelativeMatcherSettings correlative;            ///< the search where the prediction is unsure
   double correlative_sigma_xy_m = 0.1;               ///< prediction σ beyond which the search runs
   double correlative_sigma_theta_rad = 0.05;         ///< ... or heading σ beyond this
+  /// false: every submap match updates the EKF, however far from the prediction, as the scan
+  /// matcher of record does in Cartographer. Gated, a wheel slip locks the estimate out of its
+  /// own map: each later match disagrees with the slipped prediction by as much, and is refused
+  /// (the raw fr079 log, 0.3 m and 5° lost at once, 3 m at the end).
+  bool gate_matches = false;
   MotionFilterSettings motion_filter;
   PoseGraphSettings pose_graph;
   LoopClosureSettings loop_closure;
@@ -70,7 +77,7 @@ struct SlamCounters {
   std::uint64_t scans = 0;
   std::uint64_t matches = 0;           ///< scan-to-submap matches made
   std::uint64_t match_failures = 0;    ///< no points or the solver failed
-  std::uint64_t match_rejections = 0;  ///< gated out by the EKF
+  std::uint64_t match_rejections = 0;  ///< gated out by the EKF (gate_matches only)
   std::uint64_t correlative_searches = 0;
   std::uint64_t nodes = 0;
   std::uint64_t submaps = 0;
@@ -120,12 +127,17 @@ class SlamEstimator : public PoseEstimator {
     SE2 T_node_scan;  ///< the scan relative to that node (local frame)
   };
 
-  void matchScan(const std::vector<Eigen::Vector2d>& points);
+  void matchScan(const std::vector<Eigen::Vector2d>& points, Stamp stamp);
+
   bool passesMotionFilter(const SE2& T_local_robot, Stamp stamp) const;
   void addNode(const RangeData& data_robot, std::vector<Eigen::Vector2d> points, Stamp stamp);
   void searchClosuresOfNode(int node);
   void searchClosuresInSubmap(int submap);
-  void tryClosure(int submap, int node);
+  void tryClosure(int submap, int node, double drift_m);
+  /// The node a submap is tied to in the drift graph: the middle of its range.
+  int middleNodeOf(int submap) const;
+  /// The drift graph's shortcuts again, from the closures the last solve kept.
+  void resetDriftShortcuts();
   void optimiseIfDue();
   void optimise();
 
@@ -142,8 +154,8 @@ class SlamEstimator : public PoseEstimator {
   std::vector<ScanRecord> scans_;
   SE2 T_map_local_;  ///< the latest solve's correction of local SLAM
   double travelled_m_ = 0.0;
-  std::vector<double> submap_travelled_m_;  ///< path length when each submap started
-  double last_closure_travelled_m_ = 0.0;   ///< path length at the newest long closure
+  std::vector<int> submap_first_node_;  ///< the first node inserted into each submap
+  DriftGraph drift_;                    ///< how far nodes and submaps drifted apart
   int nodes_since_solve_ = 0;
   std::uint64_t closures_at_solve_ = 0;
   SlamCounters counters_;
