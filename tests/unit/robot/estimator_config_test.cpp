@@ -4,6 +4,7 @@
 
 #include "mrslam/robot/ekf_estimator.hpp"
 #include "mrslam/robot/robot_config.hpp"
+#include "mrslam/robot/slam/slam_estimator.hpp"
 #include "test_data.hpp"
 
 namespace mrslam::robot {
@@ -79,10 +80,9 @@ TEST(EstimatorConfigTest, BadValuesStopWithTheirPlace) {
   EXPECT_STREQ(estimatorTypeName(EstimatorType::kEkf), "ekf");
 }
 
-TEST(EstimatorConfigTest, ShippedRobotConfigsLoadAndPickTheEkf) {
-  for (const char* name :
-       {"carmen.yaml", "breezyslam.yaml", "breezyslam_exp1.yaml", "breezyslam_exp2.yaml",
-        "sim_robot1.yaml", "sim_robot2.yaml", "sim_robot3.yaml"}) {
+TEST(EstimatorConfigTest, ShippedRobotConfigsLoadAndPickTheirEstimator) {
+  for (const char* name : {"breezyslam.yaml", "breezyslam_exp1.yaml", "breezyslam_exp2.yaml",
+                           "sim_robot1.yaml", "sim_robot2.yaml", "sim_robot3.yaml"}) {
     const RobotConfig config = loadRobotConfig(test::sourcePath(std::string("config/") + name));
     EXPECT_EQ(config.estimator.type, EstimatorType::kEkf) << name;
     EXPECT_NE(dynamic_cast<EkfEstimator*>(makeEstimator(config, config.estimator.type).get()),
@@ -90,6 +90,9 @@ TEST(EstimatorConfigTest, ShippedRobotConfigsLoadAndPickTheEkf) {
         << name;
   }
   const RobotConfig carmen = loadRobotConfig(test::sourcePath("config/carmen.yaml"));
+  EXPECT_EQ(carmen.estimator.type, EstimatorType::kSlam);  // a raw log needs loop closure
+  EXPECT_NE(dynamic_cast<slam::SlamEstimator*>(makeEstimator(carmen, carmen.estimator.type).get()),
+            nullptr);
   EXPECT_TRUE(carmen.source.path.empty());
   EXPECT_FALSE(carmen.source.odometry_noise.enabled());
   EXPECT_DOUBLE_EQ(carmen.mapping.max_range_m, 50.0);
