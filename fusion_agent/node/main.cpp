@@ -10,10 +10,12 @@
 #include "fusion_loop.hpp"
 #include "mrslam/common/dds_settings.hpp"
 #include "mrslam/common/heap.hpp"
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/shutdown.hpp"
 #include "mrslam/common/version.hpp"
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("fusion_agent");
   CLI::App app{"mrslam fusion agent: merges the robots' maps into one global map"};
   std::string config_path;
   int domain = -1;

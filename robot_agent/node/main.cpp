@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/map_io.hpp"
 #include "mrslam/common/shutdown.hpp"
 #include "mrslam/common/version.hpp"
@@ -246,6 +247,7 @@ RobotConfig loadConfig(Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("robot_agent");
   CLI::App app{"mrslam robot agent: pose, map and status of one robot on DDS"};
   Options options;
   std::string log_level = "info";

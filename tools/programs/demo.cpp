@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/shutdown.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/tools/child_process.hpp"
@@ -128,6 +129,7 @@ int runDemo(const DemoOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("mrslam_demo");
   CLI::App app{"mrslam demo: three simulated robots and a fusion agent over DDS"};
   DemoOptions options;
   app.add_option("--config-dir", options.config_dir, "folder of sim_robot*.yaml, demo_fusion.yaml")

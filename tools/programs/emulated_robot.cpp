@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iomanip>
 
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/shutdown.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/drivers/emulated_robot.hpp"
@@ -136,6 +137,7 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("mrslam_emulated_robot");
   Options options;
   if (const char* feed = std::getenv("MRSLAM_PHIDGET_EMULATOR_FEED")) {
     options.encoder_feed = feed;

@@ -19,6 +19,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/map_io.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/drivers/log_format.hpp"
@@ -290,6 +291,7 @@ void evaluateAllRelations(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("mrslam_evaluate_trajectory");
   CLI::App app{"mrslam_evaluate_trajectory: odometry vs EKF accuracy on logs with ground truth"};
   Options options;
   app.add_option("logs", options.logs,

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <thread>
 
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/shutdown.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/drivers/gx1_emulator.hpp"
@@ -76,6 +77,7 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("mrslam_gx1_emulator");
   Options options;
   CLI::App app{"A MicroStrain 3DM-GX1 emulator on a pseudo-terminal."};
   app.add_option("link_path", options.link_path, "symbolic link to create for the device")

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/shutdown.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/drivers/hokuyo_emulator.hpp"
@@ -48,6 +49,7 @@ int runEmulator(const EmulatorOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("mrslam_hokuyo_emulator");
   EmulatorOptions options;
   CLI::App app{"mrslam_hokuyo_emulator: an emulated Hokuyo ranger on a pseudo-terminal"};
   app.add_option("link_path", options.link_path, "path of the link to the emulated device")

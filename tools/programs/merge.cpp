@@ -31,6 +31,7 @@
 #include <queue>
 
 #include "mrslam/common/heap.hpp"
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/map_loaders.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/fusion/merge/merge_cases.hpp"
@@ -320,6 +321,7 @@ int run(const MergeOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("mrslam_merge");
   MergeOptions options;
   CLI::App app{"Merges occupancy grid maps (YAML, PGM, PNG, Carpin .txt) pairwise"};
   app.add_option("maps", options.maps, "two or more map files")->required()->expected(2, -1);

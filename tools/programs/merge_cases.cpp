@@ -41,6 +41,7 @@
 #include <sstream>
 
 #include "mrslam/common/heap.hpp"
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/map_io.hpp"
 #include "mrslam/common/map_loaders.hpp"
 #include "mrslam/common/version.hpp"
@@ -561,6 +562,7 @@ int run(const CasesOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("mrslam_merge_cases");
   CasesOptions options;
   std::string all;
   for (const std::string& name : mrslam::fusion::mergerNames()) {

@@ -3,10 +3,12 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/tools/carmen_split.hpp"
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("mrslam_split_log");
   CLI::App app{"Cut a CARMEN log into K segments, each replayed by its own robot agent"};
   std::string log;
   std::string out;

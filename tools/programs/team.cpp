@@ -8,11 +8,13 @@
 #include <CLI/CLI.hpp>
 
 #include "mrslam/common/config.hpp"
+#include "mrslam/common/logging.hpp"
 #include "mrslam/common/shutdown.hpp"
 #include "mrslam/common/version.hpp"
 #include "mrslam/tools/team_launcher.hpp"
 
 int main(int argc, char** argv) {
+  mrslam::logToStandardError("mrslam_team");
   CLI::App app{"mrslam team: robot agents and fusion agents of a team file, over DDS"};
   std::string team_path;
   mrslam::tools::TeamRunOptions options;
