@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", options.timeout_s,
                  "stop everything after this many seconds (0: never)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--relations", options.relations,
+                 "score the team by this file's benchmark relations (default: the split's)");
   bool evaluate_only = false;
   app.add_flag("--evaluate-only", evaluate_only,
                "start nothing: evaluate the finished run in --out (a team on a split log)");

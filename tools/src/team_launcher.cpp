@@ -11,6 +11,7 @@
 #include "mrslam/tools/carmen_split.hpp"
 #include "mrslam/tools/child_process.hpp"
 #include "mrslam/tools/team_evaluation.hpp"
+#include "mrslam/tools/team_relations.hpp"
 
 namespace mrslam::tools {
 
@@ -306,6 +307,12 @@ bool evaluateTeam(const TeamSpec& team, const TeamRunOptions& options) {
   std::vector<std::string> folders;
   for (const TeamFusion& fusion : team.fusion) {
     folders.push_back(fusionFolder(fusion, team, options).string());
+  }
+  // A raw log has no truth to place the robots by, only its relations: they score the team.
+  const std::string relations =
+      !options.relations.empty() ? options.relations : (team.split ? team.split->relations : "");
+  if (!relations.empty()) {
+    return scoreTeamRun(options.out, folders, relations);
   }
   return evaluateTeamRun(options.out, folders);
 }

@@ -80,6 +80,7 @@ TeamSpec loadTeamSpec(const std::string& path) {
       split.fail("log", "the split needs the CARMEN log to cut");
     }
     settings.segments = static_cast<int>(split.requireInt("segments", {1.0, 64.0}));
+    settings.relations = split.getPath("relations", "");
     team.split = settings;
   }
   team.security_dir = config.getPath("security_dir", "");

@@ -16,6 +16,7 @@ struct TeamRunOptions {
   std::string out;               ///< output folder: logs/, segments/, the fusion outputs
   std::optional<int> domain_id;  ///< overrides the team file's and the configs' domain
   double timeout_s = 0.0;        ///< stop everything after this long (0: no limit)
+  std::string relations;         ///< overrides the split's relations (team_relations.hpp)
 };
 
 /// Exit code bits of a team run: 0 when every agent ended well.

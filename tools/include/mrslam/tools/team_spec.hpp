@@ -51,6 +51,7 @@ struct TeamFusion {
 struct TeamSplit {
   std::string log;  ///< CARMEN log cut into segments
   int segments = 0;
+  std::string relations;  ///< the log's benchmark relations, to score the team by; empty: none
 };
 
 struct TeamDiscoveryServer {
