@@ -103,8 +103,8 @@ void keepIcpOnWalls(const SearchInputs& inputs, const ComparisonTables& tables,
 // With `settle_alignment`: the wall-anchored transform aligned on both maps' walls replaces
 // `refined` where V is at least as high there. The alignment climbs from the coarse grid's best
 // point alone: from three starts here too, the transforms the acceptance judges moved, and the 40
-// case sets had 2 more false accepts (23 against 21) and 2 fewer right merges (twenty-sixth
-// session, before the turn check ran at both peaks).
+// case sets had 2 more false accepts (23 against 21) and 2 fewer right merges (measured with the
+// turn check at the first peak only).
 void keepAlignedWhereVHolds(const GridTransform& anchored, const SearchInputs& inputs,
                             const ComparisonTables& tables, const SeedMergerSettings& settings,
                             Refined& refined) {

@@ -26,7 +26,7 @@ using merge_test::CropPair;
 // turns keeping 0.91-0.94 of the walls' agreement (the turn check's bar is 0.95), while the seed
 // step alone ends 0.2-1.8 cells and 0.8-2.4° from that placement and refuses it for the turn check
 // (0.962-1.08): case 165 of `--seed 3`, 186 of `--seed 30` (ap_hill) and 15 of `--seed 40`
-// (intel). Since the wall alignment climbs from three starts (twenty-sixth session), the
+// (intel). With the wall alignment climbing from three starts, the
 // exhaustive step alone ends within the tolerance in 186, and refuses case 105 of `--seed 14`
 // (listed here before) by its own turn check at the first climb's peak.
 const CropPair kNearMissesWithAnUnfixedTurn[] = {

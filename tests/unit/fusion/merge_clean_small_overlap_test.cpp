@@ -35,7 +35,7 @@ const CropPair kCleanSmallOverlaps[] = {
      {{425, -74}, 180, -2.446329775294478, {38, 27}, {37, 26}}}};
 
 // Truths whose structure agreement lies between 0.93 and 0.95, merged since the bar was lowered
-// from 0.95 (fourteenth session): case 165 of `--seed 19` (ACES, 22 % overlap, V 0.982) and case
+// from 0.95: case 165 of `--seed 19` (ACES, 22 % overlap, V 0.982) and case
 // 102 of `--seed 23` (LongRun6, 29 %, V 0.983).
 const CropPair kCleanerSmallOverlaps[] = {{"freiburg-aces.pgm",
                                            165,

@@ -81,7 +81,7 @@ inline MergeCase cut(const TwoBuildings& pair) {
 /// decides the case only when the search proposes every rotation's transforms.
 inline const std::string kEveryRotation = "exhaustive: {rotation_peaks: 0}\n";
 
-/// The structure bar before the twenty-eighth session (a `seed:` section's body): cases whose
+/// A structure bar of 0.88 (a `seed:` section's body): cases whose
 /// wrong placement's walls meet walls 0.88 to 0.89 of the time were found at it, where another
 /// rule decides the case; the default bar (0.89) refuses such a placement on its own.
 inline const std::string kStructureBarAt088 = "min_structure_agreement: 0.88";

@@ -292,7 +292,7 @@ const merge_test::CropPair kNearMisses[] = {
      {{69, 47}, 187, 2.1802173914455407, {4, 12}, {8, 32}},
      {{135, 165}, 193, 2.0168056896065254, {0, 19}, {35, 0}}}};
 
-// The exhaustive merger's own checks as they were before the eleventh session.
+// The exhaustive merger's own checks switched on (they are off by default).
 constexpr const char* kOwnChecks =
     "exhaustive: {check_own_score: true, max_turn_ambiguity: 0.97}\n";
 // The chain's V-basin check off (neighbour_basins.hpp): it refuses the near misses below as well,
@@ -316,7 +316,7 @@ TEST(WallAlignmentTest, WithoutItTheSameCropsEndOutsideTheTolerance) {
   // The case the alignment mends, so the test above cannot pass without it.
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-LongRun7.txt");
   const MergeCase merge_case = merge_test::cut(kNearMisses[0]);
-  // With the exhaustive merger's own checks on (off since the eleventh session), as when the
+  // With the exhaustive merger's own checks on (off by default), as when the
   // alignment was added: without them the chain now takes another hypothesis of this case.
   const Config config = Config::loadString(std::string(kOwnChecks) + kBasinsOff +
                                                "seed:\n  wall_alignment: false\n"
@@ -328,8 +328,8 @@ TEST(WallAlignmentTest, WithoutItTheSameCropsEndOutsideTheTolerance) {
   EXPECT_FALSE(isCorrect(caseError(merge_case, result.T_to_from)));
 }
 
-// Accepted transforms of four case sets (8, 12, 19, 35 of `mrslam merge-cases`, the first code of
-// the twenty-sixth session) that ended 1.3-1.7° from the truth: the walls' agreement has two
+// Accepted transforms of four case sets (8, 12, 19, 35 of `mrslam merge-cases`, with the alignment
+// climbing from the coarse grid's best point alone) that ended 1.3-1.7° from the truth: the walls' agreement has two
 // basins there, and the coarse grid's best point lay in the one the search had found while the
 // narrow field is higher in the other, near the truth (12/124: 116.0 there, 113.5 where found,
 // 102 between). Climbing from the grid's three best distinct points reaches it.
@@ -460,7 +460,7 @@ TEST(WallAlignmentTest, SettlingOnAlignedWallsTurnsRefusalsIntoRightMerges) {
     const MergeCase merge_case = merge_test::cut(pair);
     SeedMergerSettings settings;
     settings.settle_alignment = false;
-    // The cleaner bar of walls over open floor (twelfth session) merges 166 without the settling
+    // The cleaner bar of walls over open floor merges 166 without the settling
     // too, within the tolerance; it is off here so that the settling alone decides.
     settings.clean_walls_over_floor_min_v = 2.0;
     SeedMerger without(settings);
@@ -535,7 +535,7 @@ const merge_test::CropPair kStubsAlongAnEdge{
     {{84, 145}, 219, -0.02164073794931376, {22, 4}, {16, 6}}};
 
 // With the exhaustive merger's own checks on (as when the wall-turn check was added). Without them
-// (the defaults since the eleventh session) the chain accepts this case 5.1 cells and 2.7° off,
+// (the defaults) the chain accepts this case 5.1 cells and 2.7° off,
 // a false accept listed in docs/merge_tuning.md.
 TEST(WallAlignmentTest, AnOverlapWhoseWallsDoNotFixTheRotationIsRefused) {
   MRSLAM_REQUIRE_SHARED_DATA("maps/carpin-robot1_cast.txt");

@@ -135,12 +135,12 @@ struct ChainSettings {
   /// The chain's last check, on the transform it would return: refused when the placement slid 3
   /// to 8 cells (keeping 0.9 of its overlap) disagrees on fewer than this many more known cells
   /// (truth_slide.hpp): the maps hardly fix its shift. 0: off (the default; docs/merge_tuning.md,
-  /// thirty-fifth session: it refuses more right merges than wrong ones).
+  /// it refuses more right merges than wrong ones).
   long long min_slide_margin_cells = 0;
   /// A step's accepted transform is refused when the walls of either map cross the other's open
   /// floor (floor_crossing.hpp) in a run of at least floor_crossing_min_cells cells that is at
   /// least floor_crossing_min_share of its walls on the other's known cells: a room that looks
-  /// alike placed along or turned (docs/merge_tuning.md, forty-sixth and forty-seventh sessions).
+  /// alike placed along or turned (docs/merge_tuning.md).
   /// 0 cells: off.
   int floor_crossing_min_cells = 4;
   double floor_crossing_min_share = 0.015;
@@ -151,7 +151,7 @@ struct ChainSettings {
   FloorCrossingSettings floor_crossing;
   /// The transform a step's checks accepted is refused when V peaks higher in another basin a few
   /// cells and degrees away (neighbour_basins.hpp) by more than this: the searches left it in the
-  /// basin of a placement a little off (docs/merge_tuning.md, forty-eighth session). 1 or more:
+  /// basin of a placement a little off (docs/merge_tuning.md). 1 or more:
   /// off.
   double neighbour_basin_min_v_gain = 0.002;
   NeighbourBasinSettings neighbour_basins;  ///< the grid around the transform and the climbs
@@ -299,7 +299,7 @@ ChainSettings loadChainSettings(const Config& chain);
 
 /// The default steps of a chain: the exhaustive search, the strict one where it refuses
 /// (strictExhaustiveMergerSettings(): clean fits ranked above placements that overlap more and
-/// conflict; docs/merge_tuning.md, forty-ninth session), the seed pipeline, the virtual robot.
+/// conflict; docs/merge_tuning.md), the seed pipeline, the virtual robot.
 constexpr const char* kDefaultChainSteps = "exhaustive,exhaustive_strict,seed,virtual";
 
 /// The step names of a `steps` value ("exhaustive,seed"); throws std::invalid_argument for an empty

@@ -56,7 +56,7 @@ struct ExhaustiveMergerSettings {
 /// fit cleanly above ones that cover more cells with more conflicts: in ACES's lattice of
 /// corridors the default search's 16 hypotheses can all be placements a corridor along that
 /// overlap more (agr 7600, dis 370 against the truth's 5800 and 100), and the truth is not
-/// among them (docs/merge_tuning.md, forty-ninth session).
+/// among them (docs/merge_tuning.md).
 ExhaustiveMergerSettings strictExhaustiveMergerSettings();
 
 /// Reads the search's keys of an `exhaustive:` section (keys as the fields of

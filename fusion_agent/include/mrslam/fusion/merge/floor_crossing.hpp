@@ -27,7 +27,7 @@
 // (85-98): a door open in one and shut in the other, a person standing, beams passing a gap. Runs
 // on such floor reach 14-20 cells at 1.5-2.2 % of the walls. On floor of occupancy 12 or less
 // (five more misses than hits) the growing maps of the ACES, intel and CSAIL teams stay at
-// 0.55 %, 0.76 % and 0.96 % (docs/merge_tuning.md, forty-seventh session). The maps of merge
+// 0.55 %, 0.76 % and 0.96 % (docs/merge_tuning.md). The maps of merge
 // cases are read from trinary files, where all floor is 0.
 //
 // The clearance is tested on the cells around each landed wall and the run found among the

@@ -20,8 +20,7 @@
 // peak higher than the own basin's, and on 19 false accepts of seeds 231-290 a higher one in 7,
 // four of them at the truth. As built (the chain's `neighbour_basin_min_v_gain`), at a bar of 0
 // on the 60 case sets of seeds 231-290: the other peak was higher at 5 right merges (by at most
-// 0.0013) and 3 false accepts (by 0.00004, 0.0023 and 0.0167; docs/merge_tuning.md,
-// forty-eighth session).
+// 0.0013) and 3 false accepts (by 0.00004, 0.0023 and 0.0167; docs/merge_tuning.md).
 //
 // The climb: a pattern search of V over turns about the same pivot and shifts along the axes,
 // from steps of `climb_turn_deg` and `climb_shift_cells`, each step halved where no move raises V
