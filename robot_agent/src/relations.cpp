@@ -49,22 +49,8 @@ Relation parseRelation(const std::string& text, const std::string& path, std::si
 
 // The trajectory pose stamped nearest `stamp`, when within kStampToleranceS.
 const SE2* poseAt(const std::vector<StampedPose>& by_stamp, Stamp stamp) {
-  const auto after =
-      std::lower_bound(by_stamp.begin(), by_stamp.end(), stamp,
-                       [](const StampedPose& pose, Stamp value) { return pose.stamp < value; });
-  const StampedPose* best = nullptr;
-  double best_s = kStampToleranceS;
-  for (auto it : {after, after == by_stamp.begin() ? after : std::prev(after)}) {
-    if (it == by_stamp.end()) {
-      continue;
-    }
-    const double apart = std::abs(secondsBetween(it->stamp, stamp));
-    if (apart <= best_s) {
-      best_s = apart;
-      best = &*it;
-    }
-  }
-  return best ? &best->pose : nullptr;
+  const std::optional<std::size_t> index = nearestStampIndex(by_stamp, stamp);
+  return index ? &by_stamp[*index].pose : nullptr;
 }
 
 struct ErrorSums {
@@ -115,6 +101,26 @@ std::vector<Relation> readRelations(const std::string& path) {
     }
   }
   return relations;
+}
+
+std::optional<std::size_t> nearestStampIndex(const std::vector<StampedPose>& by_stamp,
+                                             Stamp stamp) {
+  const auto after =
+      std::lower_bound(by_stamp.begin(), by_stamp.end(), stamp,
+                       [](const StampedPose& pose, Stamp value) { return pose.stamp < value; });
+  std::optional<std::size_t> best;
+  double best_s = kStampToleranceS;
+  for (auto it : {after, after == by_stamp.begin() ? after : std::prev(after)}) {
+    if (it == by_stamp.end()) {
+      continue;
+    }
+    const double apart = std::abs(secondsBetween(it->stamp, stamp));
+    if (apart <= best_s) {
+      best_s = apart;
+      best = static_cast<std::size_t>(it - by_stamp.begin());
+    }
+  }
+  return best;
 }
 
 RelationReport evaluateRelations(const std::vector<StampedPose>& trajectory,

@@ -27,6 +27,7 @@
 #include "mrslam/robot/map_quality.hpp"
 #include "mrslam/robot/relations.hpp"
 #include "mrslam/robot/trajectory_io.hpp"
+#include "mrslam/tools/team_relations.hpp"
 
 namespace {
 
@@ -208,14 +209,6 @@ double logDurationS(const std::vector<LaserScan>& scans) {
   return secondsBetween(first->stamp, last->stamp);
 }
 
-nlohmann::json statsJson(const RelationErrorStats& stats) {
-  return {{"count", stats.count},
-          {"translation_mean_m", stats.translation_mean_m},
-          {"translation_sigma_m", stats.translation_sigma_m},
-          {"rotation_mean_deg", stats.rotation_mean_deg},
-          {"rotation_sigma_deg", stats.rotation_sigma_deg}};
-}
-
 void printRelationHeader() {
   std::printf(
       "| log | run | relations | t mean ± σ [m] | r mean ± σ [deg] | < %.0f s: t [m], r [deg] | "
@@ -255,9 +248,9 @@ void evaluateLogRelations(const Options& options, const std::string& log,
     if (json) {
       json->push_back({{"log", fs::path(log).filename().string()},
                        {"run", run_name},
-                       {"all", statsJson(report.all)},
-                       {"near", statsJson(report.near)},
-                       {"far", statsJson(report.far)},
+                       {"all", mrslam::tools::relationStatsJson(report.all)},
+                       {"near", mrslam::tools::relationStatsJson(report.near)},
+                       {"far", mrslam::tools::relationStatsJson(report.far)},
                        {"unmatched", report.unmatched},
                        {"wall_time_s", run.wall_time_s},
                        {"log_duration_s", duration_s}});

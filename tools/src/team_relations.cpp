@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 
@@ -24,35 +23,28 @@ using Trajectories = std::map<std::string, std::vector<StampedPose>>;
 class StampOwners {
  public:
   explicit StampOwners(const Trajectories& trajectories) {
+    std::vector<std::pair<StampedPose, const std::string*>> owned;
     for (const auto& [id, poses] : trajectories) {
       for (const StampedPose& pose : poses) {
-        owners_.push_back({pose.stamp, id});
+        owned.emplace_back(pose, &id);
       }
     }
-    std::sort(owners_.begin(), owners_.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::sort(owned.begin(), owned.end(),
+              [](const auto& a, const auto& b) { return a.first.stamp < b.first.stamp; });
+    for (const auto& [pose, id] : owned) {
+      poses_.push_back(pose);
+      owners_.push_back(*id);
+    }
   }
 
   std::optional<std::string> ownerOf(Stamp stamp) const {
-    const auto after = std::lower_bound(owners_.begin(), owners_.end(), stamp,
-                                        [](const auto& owner, Stamp s) { return owner.first < s; });
-    std::optional<std::string> best;
-    double best_s = robot::kStampToleranceS;
-    for (auto it : {after, after == owners_.begin() ? after : std::prev(after)}) {
-      if (it == owners_.end()) {
-        continue;
-      }
-      const double gap = std::abs(secondsBetween(it->first, stamp));
-      if (gap <= best_s) {
-        best_s = gap;
-        best = it->second;
-      }
-    }
-    return best;
+    const std::optional<std::size_t> index = robot::nearestStampIndex(poses_, stamp);
+    return index ? std::optional<std::string>(owners_[*index]) : std::nullopt;
   }
 
  private:
-  std::vector<std::pair<Stamp, std::string>> owners_;
+  std::vector<StampedPose> poses_;   ///< by stamp
+  std::vector<std::string> owners_;  ///< the robot of each
 };
 
 std::vector<StampedPose> merged(const Trajectories& trajectories) {
@@ -65,18 +57,10 @@ std::vector<StampedPose> merged(const Trajectories& trajectories) {
   return poses;
 }
 
-nlohmann::json statsJson(const robot::RelationErrorStats& stats) {
-  return {{"count", stats.count},
-          {"translation_mean_m", stats.translation_mean_m},
-          {"translation_sigma_m", stats.translation_sigma_m},
-          {"rotation_mean_deg", stats.rotation_mean_deg},
-          {"rotation_sigma_deg", stats.rotation_sigma_deg}};
-}
-
 nlohmann::json reportJson(const robot::RelationReport& report) {
-  return {{"all", statsJson(report.all)},
-          {"near", statsJson(report.near)},
-          {"far", statsJson(report.far)}};
+  return {{"all", relationStatsJson(report.all)},
+          {"near", relationStatsJson(report.near)},
+          {"far", relationStatsJson(report.far)}};
 }
 
 void logStats(const char* what, const robot::RelationErrorStats& stats) {
@@ -86,6 +70,14 @@ void logStats(const char* what, const robot::RelationErrorStats& stats) {
 }
 
 }  // namespace
+
+nlohmann::json relationStatsJson(const robot::RelationErrorStats& stats) {
+  return {{"count", stats.count},
+          {"translation_mean_m", stats.translation_mean_m},
+          {"translation_sigma_m", stats.translation_sigma_m},
+          {"rotation_mean_deg", stats.rotation_mean_deg},
+          {"rotation_sigma_deg", stats.rotation_sigma_deg}};
+}
 
 Trajectories globalTrajectories(const TeamPlacements& placements, const Trajectories& local) {
   Trajectories global;
@@ -170,7 +162,7 @@ bool scoreTeamRun(const std::string& out, const std::vector<std::string>& fusion
       spdlog::info("team: {} relations not scored (a robot not placed)", report.unscored);
       nlohmann::json by_robot = nlohmann::json::object();
       for (const auto& [id, stats] : report.across_by_robot) {
-        by_robot[id] = statsJson(stats);
+        by_robot[id] = relationStatsJson(stats);
       }
       std::ofstream file(fs::path(folder) / "relations.json");
       file << nlohmann::json{{"relations", relations_path},

@@ -116,7 +116,7 @@ void SlamEstimator::addNode(const RangeData& data_robot, std::vector<Eigen::Vect
     }
   }
   const int node = graph_.addNode(T_map_local_ * T_local_node, T_local_node);
-  nodes_.push_back({T_local_node, std::move(points), travelled_m_, stamp});
+  nodes_.push_back({T_local_node, std::move(points), stamp});
   drift_.addNode(travelled_m_);
   ++counters_.nodes;
   ++version_;

@@ -5,6 +5,7 @@
 // mean and σ of its translation and rotation over all relations.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,10 @@ constexpr double kNearSeconds = 60.0;
 /// A relation stamp matches the trajectory pose nearest in time when it is within this: the
 /// logs' stamps are to the microsecond, a scan period is 0.2 s.
 constexpr double kStampToleranceS = 1e-3;
+
+/// The index of the pose of `by_stamp` (sorted by stamp) stamped nearest `stamp`, when within
+/// kStampToleranceS.
+std::optional<std::size_t> nearestStampIndex(const std::vector<StampedPose>& by_stamp, Stamp stamp);
 
 /// The metric of `trajectory` (poses of the frame the relations are of, usually the laser's) on
 /// `relations`. The error of a relation is T_true⁻¹ · T_estimated: its translation's norm and its

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct TeamRelationReport {
   /// Across relations by robot: each counts for both of its robots.
   std::map<std::string, robot::RelationErrorStats> across_by_robot;
 };
+
+/// The figures of a set of relations as JSON (count, translation and rotation mean and σ).
+nlohmann::json relationStatsJson(const robot::RelationErrorStats& stats);
 
 /// Each placed robot's trajectory in the reference frame (its id → poses), from the robots'
 /// own trajectories (`local` by id, in their map frames) and the placements.

@@ -90,7 +90,6 @@ class SlamEstimator : public PoseEstimator {
   struct NodeData {
     SE2 T_local_node;
     std::vector<Eigen::Vector2d> points;  ///< robot frame, for loop closure searches
-    double travelled_m = 0.0;             ///< path length from the start
     Stamp stamp;
   };
 
